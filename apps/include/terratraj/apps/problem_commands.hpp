@@ -1,0 +1,25 @@
+#pragma once
+// `terratraj check`: read and validate a problem file and its terrain.
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "terratraj/apps/command_context.hpp"
+#include "terratraj/apps/problem_spec.hpp"
+
+namespace terratraj::apps {
+
+/// Options of `terratraj check`.
+struct CheckOptions {
+  std::filesystem::path problem;
+};
+
+/// The JSON form of a problem as understood (radians, metres, local frame, resolved paths).
+nlohmann::json problemJson(const ProblemSpec& problem);
+
+/// Loads the problem and its terrain and checks the start and goal against it. Throws
+/// InputError naming the file / key / value at fault.
+int runCheck(const CheckOptions& options, CommandContext& context);
+
+}  // namespace terratraj::apps

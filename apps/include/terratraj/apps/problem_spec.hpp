@@ -1,0 +1,235 @@
+#pragma once
+// ProblemSpec: the whole problem file (the "Problem file (YAML)" section of the user-facing
+// contract, docs/problem-file.md) as plain values. SI units throughout; angles in radians.
+//
+// Filled by loadProblem() / parseProblem() (problem_loader.hpp), which validate every value;
+// the defaults below are the ones a key takes when the file omits it.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "terratraj/terrain/terrain_source.hpp"
+
+namespace terratraj::apps {
+
+// ---------------------------------------------------------------------------------------------
+// Enumerations and their names.
+
+/// Vehicle models, named in YAML as point | four_wheel | rocker_bogie | segway_rmp.
+enum class VehicleModelKind { kPoint, kFourWheel, kRockerBogie, kSegwayRmp };
+
+/// Costs, named in YAML as time | slope_dwell.
+enum class CostKind {
+  kTime,        ///< J = final time
+  kSlopeDwell,  ///< J = integral of 1 + alpha * (roll^2 + pitch^2) dt
+};
+
+/// Boundary-value solvers, named in YAML as newton | newton_fd | ipopt | ceres | shooting |
+/// collocation.
+enum class SolverMethod { kNewton, kNewtonFd, kIpopt, kCeres, kShooting, kCollocation };
+
+/// Planners, named in YAML as prm | lattice | taeasl.
+enum class PlannerKind { kPrm, kLattice, kTaeasl };
+
+namespace detail {
+
+/// One entry of an enum <-> name table.
+template <typename Enum>
+struct EnumName {
+  Enum value;
+  const char* name;
+};
+
+template <typename Enum, std::size_t N>
+std::optional<Enum> parseEnumName(const std::array<EnumName<Enum>, N>& table,
+                                  std::string_view name) {
+  for (const auto& entry : table) {
+    if (name == entry.name) return entry.value;
+  }
+  return std::nullopt;
+}
+
+template <typename Enum, std::size_t N>
+const char* enumName(const std::array<EnumName<Enum>, N>& table, Enum value) {
+  for (const auto& entry : table) {
+    if (entry.value == value) return entry.name;
+  }
+  return "unknown";
+}
+
+template <typename Enum, std::size_t N>
+std::vector<std::string> enumNames(const std::array<EnumName<Enum>, N>& table) {
+  std::vector<std::string> names;
+  names.reserve(N);
+  for (const auto& entry : table) names.emplace_back(entry.name);
+  return names;
+}
+
+inline constexpr std::array<EnumName<VehicleModelKind>, 4> kVehicleModelNames{{
+    {VehicleModelKind::kPoint, "point"},
+    {VehicleModelKind::kFourWheel, "four_wheel"},
+    {VehicleModelKind::kRockerBogie, "rocker_bogie"},
+    {VehicleModelKind::kSegwayRmp, "segway_rmp"},
+}};
+inline constexpr std::array<EnumName<CostKind>, 2> kCostKindNames{{
+    {CostKind::kTime, "time"},
+    {CostKind::kSlopeDwell, "slope_dwell"},
+}};
+inline constexpr std::array<EnumName<SolverMethod>, 6> kSolverMethodNames{{
+    {SolverMethod::kNewton, "newton"},
+    {SolverMethod::kNewtonFd, "newton_fd"},
+    {SolverMethod::kIpopt, "ipopt"},
+    {SolverMethod::kCeres, "ceres"},
+    {SolverMethod::kShooting, "shooting"},
+    {SolverMethod::kCollocation, "collocation"},
+}};
+inline constexpr std::array<EnumName<PlannerKind>, 3> kPlannerKindNames{{
+    {PlannerKind::kPrm, "prm"},
+    {PlannerKind::kLattice, "lattice"},
+    {PlannerKind::kTaeasl, "taeasl"},
+}};
+
+}  // namespace detail
+
+/// Parses a vehicle model name ("point", ...); std::nullopt if it is not one.
+inline std::optional<VehicleModelKind> parseVehicleModelKind(std::string_view name) {
+  return detail::parseEnumName(detail::kVehicleModelNames, name);
+}
+/// The YAML name of a vehicle model.
+inline const char* vehicleModelName(VehicleModelKind kind) {
+  return detail::enumName(detail::kVehicleModelNames, kind);
+}
+/// Every vehicle model name, in declaration order.
+inline std::vector<std::string> vehicleModelNames() {
+  return detail::enumNames(detail::kVehicleModelNames);
+}
+
+/// Parses a cost name ("time", "slope_dwell"); std::nullopt if it is not one.
+inline std::optional<CostKind> parseCostKind(std::string_view name) {
+  return detail::parseEnumName(detail::kCostKindNames, name);
+}
+/// The YAML name of a cost.
+inline const char* costKindName(CostKind kind) {
+  return detail::enumName(detail::kCostKindNames, kind);
+}
+/// Every cost name, in declaration order.
+inline std::vector<std::string> costKindNames() {
+  return detail::enumNames(detail::kCostKindNames);
+}
+
+/// Parses a solver method name ("newton", ...); std::nullopt if it is not one.
+inline std::optional<SolverMethod> parseSolverMethod(std::string_view name) {
+  return detail::parseEnumName(detail::kSolverMethodNames, name);
+}
+/// The YAML name of a solver method.
+inline const char* solverMethodName(SolverMethod method) {
+  return detail::enumName(detail::kSolverMethodNames, method);
+}
+/// Every solver method name, in declaration order.
+inline std::vector<std::string> solverMethodNames() {
+  return detail::enumNames(detail::kSolverMethodNames);
+}
+
+/// Parses a planner name ("prm", "lattice", "taeasl"); std::nullopt if it is not one.
+inline std::optional<PlannerKind> parsePlannerKind(std::string_view name) {
+  return detail::parseEnumName(detail::kPlannerKindNames, name);
+}
+/// The YAML name of a planner.
+inline const char* plannerKindName(PlannerKind kind) {
+  return detail::enumName(detail::kPlannerKindNames, kind);
+}
+/// Every planner name, in declaration order.
+inline std::vector<std::string> plannerKindNames() {
+  return detail::enumNames(detail::kPlannerKindNames);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sections of the problem file.
+
+/// Degrees -> radians factor.
+inline constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+
+/// `vehicle.limits`: bounds the trajectory must respect. All > 0.
+struct VehicleLimits {
+  double v_max = 1.0;                           ///< speed [m/s]
+  double a_max = 0.5;                           ///< |acceleration| [m/s^2]
+  double omega_max = 1.0;                       ///< |yaw rate| [rad/s]
+  double kappa_max = 1.0;                       ///< |curvature| [1/m]
+  double sigma_max = 0.5;                       ///< |curvature rate| d(kappa)/dt [1/(m s)]
+  double pitch_max = 17.0 * kRadiansPerDegree;  ///< |pitch| [rad], in (0, pi/2)
+  double roll_max = 20.0 * kRadiansPerDegree;   ///< |roll| [rad], in (0, pi/2)
+};
+
+/// `vehicle.tables`: optional kinodynamic look-up tables (JSON files; relative paths are
+/// resolved against the problem file's folder by the loader).
+struct VehicleTables {
+  std::optional<std::filesystem::path> pitch;           ///< v_max [m/s] by pitch bin
+  std::optional<std::filesystem::path> roll_curvature;  ///< v_max [m/s] by roll x curvature bin
+};
+
+/// `vehicle`: the model and its limits.
+struct VehicleSpec {
+  VehicleModelKind model = VehicleModelKind::kPoint;
+  VehicleLimits limits;
+  VehicleTables tables;
+};
+
+/// `start` / `goal`: a boundary state of the trajectory, in the frame given by
+/// ProblemSpec::pose_frame.
+struct BoundaryState {
+  double x = 0.0;        ///< [m]
+  double y = 0.0;        ///< [m]
+  double heading = 0.0;  ///< yaw [rad], 0 along +x, counter-clockwise; wrapped to (-pi, pi]
+  double v = 0.0;        ///< forward speed [m/s], in [0, v_max]
+  double omega = 0.0;    ///< yaw rate [rad/s], |omega| <= omega_max
+};
+
+/// `cost`: what the optimiser minimises.
+struct CostSpec {
+  CostKind kind = CostKind::kTime;
+  double alpha = 0.0;  ///< slope_dwell weight on roll^2 + pitch^2 [1/rad^2], >= 0
+};
+
+/// `solver`: the boundary-value solver and its stopping rules.
+struct SolverSpec {
+  SolverMethod method = SolverMethod::kNewton;
+  int intervals = 40;                    ///< shooting / collocation intervals, >= 2
+  int max_iterations = 100;              ///< >= 1
+  double tolerance_position_m = 0.001;   ///< terminal position error [m], > 0
+  double tolerance_heading_rad = 0.001;  ///< terminal heading error [rad], > 0
+  std::optional<double> time_limit_s;    ///< wall-clock limit [s], >= 0; absent = none
+};
+
+/// `planner`: the global planner.
+struct PlannerSpec {
+  PlannerKind kind = PlannerKind::kPrm;
+  double time_limit_s = 1.0;     ///< wall-clock budget [s], >= 0
+  std::uint64_t seed = 1;        ///< random seed
+  int homotopy_classes = 3;      ///< taeasl: most distinct classes returned, >= 1
+  double frame_radius_m = 10.0;  ///< taeasl: frame radius [m], > 0
+};
+
+/// The whole problem file.
+struct ProblemSpec {
+  /// The file it was read from, as given (for messages); for parseProblem(), its display name.
+  std::filesystem::path source_file;
+  /// Where the terrain comes from; paths already resolved against the file's folder.
+  terrain::TerrainSource terrain;
+  VehicleSpec vehicle;
+  BoundaryState start;
+  BoundaryState goal;
+  CostSpec cost;
+  SolverSpec solver;
+  PlannerSpec planner;
+  /// The frame start and goal are currently written in: terrain.frame as loaded, and kLocal
+  /// once resolvePosesOnTerrain() has converted them (terrain.frame itself is kept).
+  terrain::CoordinateFrame pose_frame = terrain::CoordinateFrame::kLocal;
+};
+
+}  // namespace terratraj::apps

@@ -1,0 +1,110 @@
+#include "terratraj/apps/problem_commands.hpp"
+
+#include <ostream>
+
+#include "terratraj/apps/cli.hpp"
+#include "terratraj/apps/problem_loader.hpp"
+#include "terratraj/apps/terrain_commands.hpp"
+#include "terratraj/terrain/terrain_source.hpp"
+#include "terratraj/terrain/terrain_statistics.hpp"
+
+namespace terratraj::apps {
+namespace {
+
+nlohmann::json stateJson(const BoundaryState& state) {
+  return {{"x", state.x}, {"y", state.y}, {"heading", state.heading}, {"v", state.v},
+          {"omega", state.omega}};
+}
+
+nlohmann::json optionalPath(const std::optional<std::filesystem::path>& path) {
+  return path ? nlohmann::json(path->string()) : nlohmann::json(nullptr);
+}
+
+nlohmann::json terrainSourceJson(const terrain::TerrainSource& source) {
+  nlohmann::json json{
+      {"file", optionalPath(source.file)},
+      {"z_scale", source.raster.z_scale},
+      {"frame", source.frame == terrain::CoordinateFrame::kWorld ? "world" : "local"},
+      {"obstacles",
+       {{"file", optionalPath(source.obstacles.file)},
+        {"max_slope", source.obstacles.max_slope ? nlohmann::json(*source.obstacles.max_slope)
+                                                 : nlohmann::json(nullptr)}}},
+  };
+  json["cell"] = source.raster.cell ? nlohmann::json(*source.raster.cell) : nlohmann::json(nullptr);
+  if (source.generate) {
+    const terrain::GeneratorOptions& g = *source.generate;
+    json["generate"] = {{"kind", terrain::terrainKindName(g.kind)}, {"rows", g.rows},
+                        {"cols", g.cols}, {"cell", g.cell}, {"seed", g.seed}};
+  } else {
+    json["generate"] = nullptr;
+  }
+  return json;
+}
+
+}  // namespace
+
+nlohmann::json problemJson(const ProblemSpec& problem) {
+  const VehicleLimits& l = problem.vehicle.limits;
+  return {
+      {"file", problem.source_file.string()},
+      {"terrain", terrainSourceJson(problem.terrain)},
+      {"vehicle",
+       {{"model", vehicleModelName(problem.vehicle.model)},
+        {"limits",
+         {{"v_max", l.v_max}, {"a_max", l.a_max}, {"omega_max", l.omega_max},
+          {"kappa_max", l.kappa_max}, {"sigma_max", l.sigma_max}, {"pitch_max", l.pitch_max},
+          {"roll_max", l.roll_max}}},
+        {"tables",
+         {{"pitch", optionalPath(problem.vehicle.tables.pitch)},
+          {"roll_curvature", optionalPath(problem.vehicle.tables.roll_curvature)}}}}},
+      {"start", stateJson(problem.start)},
+      {"goal", stateJson(problem.goal)},
+      {"pose_frame", problem.pose_frame == terrain::CoordinateFrame::kWorld ? "world" : "local"},
+      {"cost", {{"kind", costKindName(problem.cost.kind)}, {"alpha", problem.cost.alpha}}},
+      {"solver",
+       {{"method", solverMethodName(problem.solver.method)},
+        {"intervals", problem.solver.intervals},
+        {"max_iterations", problem.solver.max_iterations},
+        {"tolerance",
+         {{"position_m", problem.solver.tolerance_position_m},
+          {"heading_rad", problem.solver.tolerance_heading_rad}}},
+        {"time_limit_s", problem.solver.time_limit_s ? nlohmann::json(*problem.solver.time_limit_s)
+                                                     : nlohmann::json(nullptr)}}},
+      {"planner",
+       {{"kind", plannerKindName(problem.planner.kind)},
+        {"time_limit_s", problem.planner.time_limit_s},
+        {"seed", problem.planner.seed},
+        {"homotopy_classes", problem.planner.homotopy_classes},
+        {"frame_radius_m", problem.planner.frame_radius_m}}},
+  };
+}
+
+int runCheck(const CheckOptions& options, CommandContext& context) {
+  ProblemSpec problem = loadProblem(options.problem);
+  context.log->info("{}: problem read; loading its terrain", options.problem.string());
+  const terrain::ElevationMap map = terrain::loadTerrain(problem.terrain);
+  resolvePosesOnTerrain(problem, map);
+  const terrain::TerrainStatistics stats = terrain::computeTerrainStatistics(map);
+  if (context.json) {
+    nlohmann::json json{{"status", "ok"},
+                        {"problem", problemJson(problem)},
+                        {"terrain", terrainStatisticsJson(stats)}};
+    context.out << json.dump(2) << '\n';
+  } else {
+    context.out << options.problem.string() << ": ok\n"
+                << "  vehicle    " << vehicleModelName(problem.vehicle.model) << ", v_max "
+                << problem.vehicle.limits.v_max << " m/s\n"
+                << "  start      (" << problem.start.x << ", " << problem.start.y
+                << ") m, heading " << problem.start.heading << " rad (local frame)\n"
+                << "  goal       (" << problem.goal.x << ", " << problem.goal.y
+                << ") m, heading " << problem.goal.heading << " rad (local frame)\n"
+                << "  cost       " << costKindName(problem.cost.kind) << ", solver "
+                << solverMethodName(problem.solver.method) << ", planner "
+                << plannerKindName(problem.planner.kind) << '\n'
+                << "terrain\n"
+                << terrainStatisticsText(stats);
+  }
+  return kExitSuccess;
+}
+
+}  // namespace terratraj::apps

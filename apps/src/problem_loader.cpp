@@ -1,0 +1,845 @@
+#include "terratraj/apps/problem_loader.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <locale>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "terratraj/terrain/grid_geometry.hpp"
+#include "terratraj/terrain/input_error.hpp"
+
+namespace terratraj::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRightAngleDeg = 90.0;  // upper bound (open) of pitch, roll, slope limits
+constexpr int kMinGridSide = 2;          // generate.rows / cols
+constexpr int kMinIntervals = 2;         // solver.intervals
+constexpr int kMaxIntervals = 100000;    // keeps allocations sane
+constexpr int kMinIterations = 1;        // solver.max_iterations
+constexpr int kMaxIterations = 1000000;
+constexpr int kMinHomotopyClasses = 1;  // planner.homotopy_classes
+constexpr int kMaxHomotopyClasses = 1000;
+constexpr std::size_t kMaxProblemFileBytes = std::size_t{16} << 20;  // 16 MiB
+constexpr std::size_t kReadChunkBytes = std::size_t{1} << 16;
+constexpr const char* kYamlStringTag = "tag:yaml.org,2002:str";
+constexpr int kMessageDigits = 6;  // significant digits of numbers in messages
+
+// ------------------------------------------------------------------------------------------
+// Messages.
+
+// A number for a message: up to kMessageDigits significant digits ("0", "1.5708").
+std::string formatNumber(double value) {
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  out.precision(kMessageDigits);
+  out << value;
+  return out.str();
+}
+
+// A coordinate [m] for a message: as formatNumber(), with ".0" on whole numbers ("512.0").
+std::string formatCoordinate(double value) {
+  std::string text = formatNumber(value);
+  if (std::isfinite(value) && text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string inQuotes(std::string_view text) { return "\"" + std::string(text) + "\""; }
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string joined;
+  for (const std::string& name : names) {
+    if (!joined.empty()) joined += ", ";
+    joined += name;
+  }
+  return joined;
+}
+
+std::string joinPath(const std::string& parent, std::string_view key) {
+  return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+}
+
+// What a node holds, for "expected X, got Y" messages.
+std::string describeNode(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Map:
+      return "a map";
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Null:
+      return "an empty value";
+    case YAML::NodeType::Scalar:
+      return inQuotes(node.Scalar());
+    case YAML::NodeType::Undefined:
+      break;
+  }
+  return "nothing";
+}
+
+// The file being parsed: its name for messages and the folder relative paths start from.
+class Context {
+ public:
+  Context(std::string display_name, fs::path base_dir)
+      : display_name_(std::move(display_name)), base_dir_(std::move(base_dir)) {}
+
+  const std::string& displayName() const { return display_name_; }
+
+  // Throws InputError "<file>:<line>:<column>: <path>: <what>" (position and path omitted when
+  // unknown / empty).
+  [[noreturn]] void fail(const YAML::Mark& mark, const std::string& path,
+                         const std::string& what) const {
+    std::ostringstream message;
+    message << display_name_;
+    if (!mark.is_null()) message << ":" << mark.line + 1 << ":" << mark.column + 1;
+    message << ": ";
+    if (!path.empty()) message << path << ": ";
+    message << what;
+    throw InputError(message.str());
+  }
+
+  // A path from the file: relative ones are taken from the file's folder.
+  fs::path resolve(const fs::path& path) const {
+    return path.is_absolute() ? path : base_dir_ / path;
+  }
+
+ private:
+  std::string display_name_;
+  fs::path base_dir_;
+};
+
+// A value in the file with the key it was found under.
+struct Field {
+  YAML::Node value;
+  YAML::Mark key_mark;
+  std::string path;  // e.g. "vehicle.limits.v_max"
+
+  // Where errors about the value point: the value itself, or its key when the value is empty
+  // (yaml-cpp places an empty value at the start of the next line).
+  YAML::Mark mark() const {
+    if (value.IsNull() || value.Mark().is_null()) return key_mark;
+    return value.Mark();
+  }
+};
+
+[[noreturn]] void failAt(const Context& ctx, const Field& field, const std::string& what) {
+  ctx.fail(field.mark(), field.path, what);
+}
+
+// ------------------------------------------------------------------------------------------
+// Scalars.
+
+// Ranges of allowed real values, for checks and "must be ..." messages.
+struct Range {
+  enum class Bound { kNone, kOpen, kClosed };
+  Bound lower_bound = Bound::kNone;
+  double lower = 0.0;
+  Bound upper_bound = Bound::kNone;
+  double upper = 0.0;
+  std::string unit;  // shown after two-sided bounds, e.g. "deg"
+
+  static Range any() { return {}; }
+  static Range positive() { return {Bound::kOpen, 0.0, Bound::kNone, 0.0, ""}; }
+  static Range nonNegative() { return {Bound::kClosed, 0.0, Bound::kNone, 0.0, ""}; }
+  static Range openInterval(double low, double high, std::string unit_name) {
+    return {Bound::kOpen, low, Bound::kOpen, high, std::move(unit_name)};
+  }
+  // The same range with both bounds multiplied by `factor` (> 0), in another unit.
+  Range scaled(double factor, std::string unit_name) const {
+    return {lower_bound, lower * factor, upper_bound, upper * factor, std::move(unit_name)};
+  }
+
+  bool contains(double value) const {
+    const bool above = lower_bound == Bound::kNone ||
+                       (lower_bound == Bound::kOpen ? value > lower : value >= lower);
+    const bool below = upper_bound == Bound::kNone ||
+                       (upper_bound == Bound::kOpen ? value < upper : value <= upper);
+    return above && below;
+  }
+
+  // "> 0", ">= 0", "in (0, 90) deg", ...
+  std::string describe() const {
+    const bool has_lower = lower_bound != Bound::kNone;
+    const bool has_upper = upper_bound != Bound::kNone;
+    std::string text;
+    if (has_lower && has_upper) {
+      text = "in ";
+      text += lower_bound == Bound::kOpen ? "(" : "[";
+      text += formatNumber(lower) + ", " + formatNumber(upper);
+      text += upper_bound == Bound::kOpen ? ")" : "]";
+      if (!unit.empty()) text += " " + unit;
+    } else if (has_lower) {
+      text = (lower_bound == Bound::kOpen ? "> " : ">= ") + formatNumber(lower);
+    } else if (has_upper) {
+      text = (upper_bound == Bound::kOpen ? "< " : "<= ") + formatNumber(upper);
+    }
+    return text;
+  }
+};
+
+std::size_t countDigits(std::string_view text, std::size_t from) {
+  std::size_t count = 0;
+  while (from + count < text.size() && text[from + count] >= '0' && text[from + count] <= '9') {
+    ++count;
+  }
+  return count;
+}
+
+// Whether `text` is a YAML 1.2 core-schema decimal number:
+// [-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?
+bool isDecimalNumber(std::string_view text) {
+  std::size_t i = 0;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  const std::size_t integer_digits = countDigits(text, i);
+  i += integer_digits;
+  std::size_t fraction_digits = 0;
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    fraction_digits = countDigits(text, i);
+    i += fraction_digits;
+  }
+  if (integer_digits == 0 && fraction_digits == 0) return false;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+    const std::size_t exponent_digits = countDigits(text, i);
+    if (exponent_digits == 0) return false;
+    i += exponent_digits;
+  }
+  return i == text.size();
+}
+
+// Whether `text` spells an infinity or NaN (YAML's .inf / .nan in any case, and inf / nan).
+bool isNonFiniteSpelling(std::string_view text) {
+  if (!text.empty() && (text.front() == '+' || text.front() == '-')) text.remove_prefix(1);
+  if (!text.empty() && text.front() == '.') text.remove_prefix(1);
+  std::string lower(text);
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return lower == "inf" || lower == "infinity" || lower == "nan";
+}
+
+// The scalar text of a field that must be a plain (unquoted) scalar holding a number.
+std::string numberText(const Context& ctx, const Field& field, const char* expected) {
+  if (!field.value.IsScalar()) {
+    failAt(ctx, field, std::string("expected ") + expected + ", got " + describeNode(field.value));
+  }
+  const std::string& text = field.value.Scalar();
+  const std::string& tag = field.value.Tag();
+  if (tag == "!" || tag == kYamlStringTag) {
+    failAt(ctx, field,
+           std::string("expected ") + expected + ", got the quoted string " + inQuotes(text) +
+               " (write numbers without quotes)");
+  }
+  return text;
+}
+
+// A finite real number in `range`.
+double readNumber(const Context& ctx, const Field& field, const Range& range) {
+  const std::string text = numberText(ctx, field, "a number");
+  if (isNonFiniteSpelling(text)) failAt(ctx, field, "must be a finite number (got " + text + ")");
+  if (!isDecimalNumber(text)) failAt(ctx, field, "expected a number, got " + inQuotes(text));
+  std::string_view digits = text;
+  if (digits.front() == '+') digits.remove_prefix(1);
+  double value = 0.0;
+  const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (result.ec != std::errc() || result.ptr != digits.data() + digits.size() ||
+      !std::isfinite(value)) {
+    failAt(ctx, field, "is out of the range of a double (got " + text + ")");
+  }
+  if (!range.contains(value)) {
+    failAt(ctx, field, "must be " + range.describe() + " (got " + text + ")");
+  }
+  return value;
+}
+
+// An integer written as one, split into sign and magnitude (saturated on overflow).
+struct ParsedInteger {
+  bool negative = false;
+  unsigned long long magnitude = 0;
+  bool overflow = false;
+};
+
+ParsedInteger parseIntegerText(const Context& ctx, const Field& field) {
+  const std::string text = numberText(ctx, field, "an integer");
+  std::string_view digits = text;
+  ParsedInteger parsed;
+  if (!digits.empty() && (digits.front() == '+' || digits.front() == '-')) {
+    parsed.negative = digits.front() == '-';
+    digits.remove_prefix(1);
+  }
+  if (digits.empty() || countDigits(digits, 0) != digits.size()) {
+    failAt(ctx, field,
+           "expected an integer, got " + (isDecimalNumber(text) ? text : inQuotes(text)));
+  }
+  const auto result =
+      std::from_chars(digits.data(), digits.data() + digits.size(), parsed.magnitude);
+  if (result.ec == std::errc::result_out_of_range) {
+    parsed.overflow = true;
+    parsed.magnitude = std::numeric_limits<unsigned long long>::max();
+  }
+  return parsed;
+}
+
+// An integer in [min_value, max_value].
+int readInt(const Context& ctx, const Field& field, int min_value, int max_value) {
+  const ParsedInteger parsed = parseIntegerText(ctx, field);
+  const std::string got = " (got " + field.value.Scalar() + ")";
+  if (parsed.negative && parsed.magnitude != 0) {
+    // Negative: below min_value unless its magnitude is at most -min_value.
+    if (min_value >= 0 ||
+        parsed.magnitude > static_cast<unsigned long long>(-static_cast<long long>(min_value))) {
+      failAt(ctx, field, "must be >= " + std::to_string(min_value) + got);
+    }
+    return static_cast<int>(-static_cast<long long>(parsed.magnitude));
+  }
+  if (parsed.magnitude < static_cast<unsigned long long>(std::max(min_value, 0))) {
+    failAt(ctx, field, "must be >= " + std::to_string(min_value) + got);
+  }
+  if (max_value < 0 || parsed.magnitude > static_cast<unsigned long long>(max_value)) {
+    failAt(ctx, field, "must be <= " + std::to_string(max_value) + got);
+  }
+  return static_cast<int>(parsed.magnitude);
+}
+
+// An integer in [0, 2^64 - 1] (random seeds).
+std::uint64_t readUint64(const Context& ctx, const Field& field) {
+  const ParsedInteger parsed = parseIntegerText(ctx, field);
+  const std::string got = " (got " + field.value.Scalar() + ")";
+  if (parsed.negative && parsed.magnitude != 0) failAt(ctx, field, "must be >= 0" + got);
+  if (parsed.overflow) {
+    failAt(ctx, field,
+           "must be <= " + std::to_string(std::numeric_limits<std::uint64_t>::max()) + got);
+  }
+  return static_cast<std::uint64_t>(parsed.magnitude);
+}
+
+// A scalar as text (quoted or not).
+std::string readString(const Context& ctx, const Field& field) {
+  if (!field.value.IsScalar()) {
+    failAt(ctx, field, "expected a string, got " + describeNode(field.value));
+  }
+  return field.value.Scalar();
+}
+
+// A non-empty file path, resolved against the problem file's folder.
+fs::path readPath(const Context& ctx, const Field& field) {
+  const std::string text = readString(ctx, field);
+  if (text.empty()) failAt(ctx, field, "expected a file path, got an empty string");
+  return ctx.resolve(fs::path(text));
+}
+
+// One of an enumeration's names.
+template <typename Enum, typename Parser>
+Enum readEnum(const Context& ctx, const Field& field, Parser parse,
+              const std::vector<std::string>& names) {
+  const std::string expected = "must be one of: " + joinNames(names);
+  if (!field.value.IsScalar()) {
+    failAt(ctx, field, expected + " (got " + describeNode(field.value) + ")");
+  }
+  const std::optional<Enum> value = parse(field.value.Scalar());
+  if (!value) failAt(ctx, field, expected + " (got " + inQuotes(field.value.Scalar()) + ")");
+  return *value;
+}
+
+// Wraps an angle [rad] to (-pi, pi].
+double wrapAngle(double angle) {
+  double wrapped = std::remainder(angle, 2.0 * kPi);
+  if (wrapped <= -kPi) wrapped += 2.0 * kPi;
+  return wrapped;
+}
+
+// ------------------------------------------------------------------------------------------
+// Maps.
+
+// Checks that `map` holds only the keys in `allowed`, each once, each a plain name; throws
+// InputError at the first offending key (in file order).
+void requireKeys(const Context& ctx, const YAML::Node& map, const std::string& path,
+                 const std::vector<std::string_view>& allowed) {
+  std::vector<std::pair<std::string, YAML::Mark>> seen;
+  for (auto it = map.begin(); it != map.end(); ++it) {
+    const YAML::Node key = it->first;  // a copy: `it->` yields a temporary proxy
+    if (!key.IsScalar()) {
+      ctx.fail(key.Mark(), path, "keys must be plain names, got " + describeNode(key));
+    }
+    const std::string& name = key.Scalar();
+    if (name.empty()) ctx.fail(key.Mark(), path, "keys must be plain names, got an empty key");
+    bool known = false;
+    for (std::string_view candidate : allowed) known = known || candidate == name;
+    if (!known) {
+      std::vector<std::string> names(allowed.begin(), allowed.end());
+      ctx.fail(key.Mark(), joinPath(path, name),
+               "unknown key (expected one of: " + joinNames(names) + ")");
+    }
+    for (const auto& [previous, previous_mark] : seen) {
+      if (previous == name) {
+        ctx.fail(
+            key.Mark(), joinPath(path, name),
+            "duplicate key (first given on line " + std::to_string(previous_mark.line + 1) + ")");
+      }
+    }
+    seen.emplace_back(name, key.Mark());
+  }
+}
+
+// A validated map: its keys are known, and each value can be looked up with its key's mark.
+class MapReader {
+ public:
+  // Throws InputError unless `field` holds a map whose keys are all in `allowed`.
+  MapReader(const Context& ctx, const Field& field, std::vector<std::string_view> allowed)
+      : ctx_(ctx), field_(field) {
+    if (!field.value.IsMap()) {
+      failAt(ctx, field, "expected a map, got " + describeNode(field.value));
+    }
+    requireKeys(ctx, field.value, field.path, allowed);
+  }
+
+  const std::string& path() const { return field_.path; }
+  // Where errors about the map as a whole (e.g. a missing key) point.
+  YAML::Mark mark() const { return field_.mark(); }
+  std::string childPath(std::string_view key) const { return joinPath(field_.path, key); }
+
+  // The value under `key`, if present.
+  std::optional<Field> find(std::string_view key) const {
+    for (auto it = field_.value.begin(); it != field_.value.end(); ++it) {
+      if (it->first.Scalar() == key) return Field{it->second, it->first.Mark(), childPath(key)};
+    }
+    return std::nullopt;
+  }
+
+  // The value under `key`; throws InputError at the map when it is absent.
+  Field require(std::string_view key) const {
+    std::optional<Field> field = find(key);
+    if (!field) ctx_.fail(mark(), childPath(key), "missing required key");
+    return *std::move(field);
+  }
+
+  // Throws InputError at this map, about the key `key` (or the map itself when empty).
+  [[noreturn]] void fail(std::string_view key, const std::string& what) const {
+    ctx_.fail(mark(), key.empty() ? path() : childPath(key), what);
+  }
+
+  std::optional<double> optionalNumber(std::string_view key, const Range& range) const {
+    const std::optional<Field> field = find(key);
+    if (!field) return std::nullopt;
+    return readNumber(ctx_, *field, range);
+  }
+  double requiredNumber(std::string_view key, const Range& range) const {
+    return readNumber(ctx_, require(key), range);
+  }
+  // Sets `target` from `key` when the key is present.
+  void readNumberInto(std::string_view key, const Range& range, double& target) const {
+    if (const std::optional<double> value = optionalNumber(key, range)) target = *value;
+  }
+  void readIntInto(std::string_view key, int min_value, int max_value, int& target) const {
+    if (const std::optional<Field> field = find(key)) {
+      target = readInt(ctx_, *field, min_value, max_value);
+    }
+  }
+  void readSeedInto(std::string_view key, std::uint64_t& target) const {
+    if (const std::optional<Field> field = find(key)) target = readUint64(ctx_, *field);
+  }
+
+  // An angle given as `rad_key` [rad] or `rad_key`_deg [deg], not both; returned in radians.
+  // `degree_range` bounds it (in degrees).
+  std::optional<double> optionalAngle(std::string_view rad_key, const Range& degree_range) const {
+    const std::string deg_key = std::string(rad_key) + "_deg";
+    const std::optional<Field> radians = find(rad_key);
+    const std::optional<Field> degrees = find(deg_key);
+    if (radians && degrees) {
+      ctx_.fail(degrees->key_mark, childPath(rad_key),
+                "give either " + std::string(rad_key) + " or " + deg_key + ", not both");
+    }
+    if (radians) return readNumber(ctx_, *radians, degree_range.scaled(kRadiansPerDegree, "rad"));
+    if (degrees) return readNumber(ctx_, *degrees, degree_range) * kRadiansPerDegree;
+    return std::nullopt;
+  }
+  void readAngleInto(std::string_view rad_key, const Range& degree_range, double& target) const {
+    if (const std::optional<double> value = optionalAngle(rad_key, degree_range)) target = *value;
+  }
+
+ private:
+  const Context& ctx_;
+  Field field_;
+};
+
+// ------------------------------------------------------------------------------------------
+// Sections.
+
+// (0, 90) deg: pitch, roll and slope limits.
+Range rightAngleRangeDeg() { return Range::openInterval(0.0, kRightAngleDeg, "deg"); }
+
+// `terrain.generate`; missing keys keep GeneratorOptions' defaults.
+terrain::GeneratorOptions parseGenerate(const Context& ctx, const Field& field) {
+  const MapReader map(ctx, field, {"kind", "rows", "cols", "cell", "seed"});
+  terrain::GeneratorOptions options;
+  options.kind = readEnum<terrain::TerrainKind>(ctx, map.require("kind"), terrain::parseTerrainKind,
+                                                terrain::terrainKindNames());
+  map.readIntInto("rows", kMinGridSide, std::numeric_limits<int>::max(), options.rows);
+  map.readIntInto("cols", kMinGridSide, std::numeric_limits<int>::max(), options.cols);
+  map.readNumberInto("cell", Range::positive(), options.cell);
+  map.readSeedInto("seed", options.seed);
+  const std::int64_t cells = std::int64_t{options.rows} * std::int64_t{options.cols};
+  if (cells > terrain::kMaxGeneratedCells) {
+    map.fail("", "rows * cols = " + std::to_string(options.rows) + " * " +
+                     std::to_string(options.cols) + " cells exceeds the limit of " +
+                     std::to_string(terrain::kMaxGeneratedCells));
+  }
+  return options;
+}
+
+// `terrain.obstacles`: a lethal raster and/or a maximum slope, at least one.
+terrain::ObstacleSource parseObstacles(const Context& ctx, const Field& field) {
+  const MapReader map(ctx, field, {"file", "max_slope", "max_slope_deg"});
+  terrain::ObstacleSource obstacles;
+  if (const std::optional<Field> file = map.find("file")) obstacles.file = readPath(ctx, *file);
+  obstacles.max_slope = map.optionalAngle("max_slope", rightAngleRangeDeg());
+  if (!obstacles.file && !obstacles.max_slope) {
+    map.fail("", "give file and/or max_slope_deg (or remove obstacles)");
+  }
+  return obstacles;
+}
+
+// `terrain.frame` names.
+std::optional<terrain::CoordinateFrame> parseFrame(std::string_view name) {
+  if (name == "local") return terrain::CoordinateFrame::kLocal;
+  if (name == "world") return terrain::CoordinateFrame::kWorld;
+  return std::nullopt;
+}
+
+// `terrain`: exactly one of file and generate, plus raster options, frame and obstacles.
+terrain::TerrainSource parseTerrain(const Context& ctx, const Field& field) {
+  const MapReader map(ctx, field, {"file", "generate", "cell", "z_scale", "frame", "obstacles"});
+  terrain::TerrainSource source;
+  const std::optional<Field> file = map.find("file");
+  const std::optional<Field> generate = map.find("generate");
+  if (file && generate) {
+    ctx.fail(generate->key_mark, map.path(), "give either file or generate, not both");
+  }
+  if (!file && !generate) {
+    map.fail("", "give one of file (an elevation raster) or generate (a synthetic terrain)");
+  }
+  if (file) source.file = readPath(ctx, *file);
+  if (generate) source.generate = parseGenerate(ctx, *generate);
+
+  if (const std::optional<Field> cell = map.find("cell")) {
+    if (generate) {
+      ctx.fail(cell->key_mark, cell->path,
+               "not allowed with terrain.generate (set the cell size with generate.cell)");
+    }
+    source.raster.cell = readNumber(ctx, *cell, Range::positive());
+  }
+  if (const std::optional<Field> z_scale = map.find("z_scale")) {
+    source.raster.z_scale = readNumber(ctx, *z_scale, Range::any());
+    if (source.raster.z_scale == 0.0) failAt(ctx, *z_scale, "must not be 0");
+  }
+  if (const std::optional<Field> frame = map.find("frame")) {
+    source.frame = readEnum<terrain::CoordinateFrame>(ctx, *frame, parseFrame, {"local", "world"});
+  }
+  if (const std::optional<Field> obstacles = map.find("obstacles")) {
+    source.obstacles = parseObstacles(ctx, *obstacles);
+  }
+  return source;
+}
+
+// `vehicle.limits`: every limit optional and > 0; pitch and roll limits in (0, 90) deg.
+VehicleLimits parseLimits(const Context& ctx, const Field& field) {
+  const MapReader map(ctx, field,
+                      {"v_max", "a_max", "omega_max", "kappa_max", "sigma_max", "pitch_max",
+                       "pitch_max_deg", "roll_max", "roll_max_deg"});
+  VehicleLimits limits;
+  map.readNumberInto("v_max", Range::positive(), limits.v_max);
+  map.readNumberInto("a_max", Range::positive(), limits.a_max);
+  map.readNumberInto("omega_max", Range::positive(), limits.omega_max);
+  map.readNumberInto("kappa_max", Range::positive(), limits.kappa_max);
+  map.readNumberInto("sigma_max", Range::positive(), limits.sigma_max);
+  map.readAngleInto("pitch_max", rightAngleRangeDeg(), limits.pitch_max);
+  map.readAngleInto("roll_max", rightAngleRangeDeg(), limits.roll_max);
+  return limits;
+}
+
+// `vehicle.tables`: optional look-up table paths.
+VehicleTables parseTables(const Context& ctx, const Field& field) {
+  const MapReader map(ctx, field, {"pitch", "roll_curvature"});
+  VehicleTables tables;
+  if (const std::optional<Field> pitch = map.find("pitch")) tables.pitch = readPath(ctx, *pitch);
+  if (const std::optional<Field> roll = map.find("roll_curvature")) {
+    tables.roll_curvature = readPath(ctx, *roll);
+  }
+  return tables;
+}
+
+// `vehicle`: model, limits, tables.
+VehicleSpec parseVehicle(const Context& ctx, const Field& field) {
+  const MapReader map(ctx, field, {"model", "limits", "tables"});
+  VehicleSpec vehicle;
+  if (const std::optional<Field> model = map.find("model")) {
+    vehicle.model =
+        readEnum<VehicleModelKind>(ctx, *model, parseVehicleModelKind, vehicleModelNames());
+  }
+  if (const std::optional<Field> limits = map.find("limits")) {
+    vehicle.limits = parseLimits(ctx, *limits);
+  }
+  if (const std::optional<Field> tables = map.find("tables")) {
+    vehicle.tables = parseTables(ctx, *tables);
+  }
+  return vehicle;
+}
+
+// `start` / `goal`: x, y and heading required; v and omega within `limits`.
+BoundaryState parseBoundary(const Context& ctx, const Field& field, const VehicleLimits& limits) {
+  const MapReader map(ctx, field, {"x", "y", "heading", "heading_deg", "v", "omega"});
+  BoundaryState state;
+  state.x = map.requiredNumber("x", Range::any());
+  state.y = map.requiredNumber("y", Range::any());
+  const std::optional<double> heading = map.optionalAngle("heading", Range::any());
+  if (!heading) {
+    map.fail("heading", "missing required key (give heading_deg [deg] or heading [rad])");
+  }
+  state.heading = wrapAngle(*heading);
+  if (const std::optional<Field> v = map.find("v")) {
+    state.v = readNumber(ctx, *v, Range::nonNegative());
+    if (state.v > limits.v_max) {
+      failAt(ctx, *v,
+             "must be <= vehicle.limits.v_max = " + formatNumber(limits.v_max) + " m/s (got " +
+                 v->value.Scalar() + ")");
+    }
+  }
+  if (const std::optional<Field> omega = map.find("omega")) {
+    state.omega = readNumber(ctx, *omega, Range::any());
+    if (std::abs(state.omega) > limits.omega_max) {
+      failAt(ctx, *omega,
+             "|omega| must be <= vehicle.limits.omega_max = " + formatNumber(limits.omega_max) +
+                 " rad/s (got " + omega->value.Scalar() + ")");
+    }
+  }
+  return state;
+}
+
+// `cost`.
+CostSpec parseCost(const Context& ctx, const Field& field) {
+  const MapReader map(ctx, field, {"kind", "alpha"});
+  CostSpec cost;
+  if (const std::optional<Field> kind = map.find("kind")) {
+    cost.kind = readEnum<CostKind>(ctx, *kind, parseCostKind, costKindNames());
+  }
+  map.readNumberInto("alpha", Range::nonNegative(), cost.alpha);
+  return cost;
+}
+
+// `solver.tolerance`, into `solver`.
+void parseTolerance(const Context& ctx, const Field& field, SolverSpec& solver) {
+  const MapReader map(ctx, field, {"position_m", "heading_rad"});
+  map.readNumberInto("position_m", Range::positive(), solver.tolerance_position_m);
+  map.readNumberInto("heading_rad", Range::positive(), solver.tolerance_heading_rad);
+}
+
+// `solver`.
+SolverSpec parseSolver(const Context& ctx, const Field& field) {
+  const MapReader map(ctx, field,
+                      {"method", "intervals", "max_iterations", "tolerance", "time_limit_s"});
+  SolverSpec solver;
+  if (const std::optional<Field> method = map.find("method")) {
+    solver.method = readEnum<SolverMethod>(ctx, *method, parseSolverMethod, solverMethodNames());
+  }
+  map.readIntInto("intervals", kMinIntervals, kMaxIntervals, solver.intervals);
+  map.readIntInto("max_iterations", kMinIterations, kMaxIterations, solver.max_iterations);
+  if (const std::optional<Field> tolerance = map.find("tolerance")) {
+    parseTolerance(ctx, *tolerance, solver);
+  }
+  solver.time_limit_s = map.optionalNumber("time_limit_s", Range::nonNegative());
+  return solver;
+}
+
+// `planner`.
+PlannerSpec parsePlanner(const Context& ctx, const Field& field) {
+  const MapReader map(ctx, field,
+                      {"kind", "time_limit_s", "seed", "homotopy_classes", "frame_radius_m"});
+  PlannerSpec planner;
+  if (const std::optional<Field> kind = map.find("kind")) {
+    planner.kind = readEnum<PlannerKind>(ctx, *kind, parsePlannerKind, plannerKindNames());
+  }
+  map.readNumberInto("time_limit_s", Range::nonNegative(), planner.time_limit_s);
+  map.readSeedInto("seed", planner.seed);
+  map.readIntInto("homotopy_classes", kMinHomotopyClasses, kMaxHomotopyClasses,
+                  planner.homotopy_classes);
+  map.readNumberInto("frame_radius_m", Range::positive(), planner.frame_radius_m);
+  return planner;
+}
+
+// The single YAML document of the text; throws InputError for malformed YAML, no document, or
+// more than one.
+YAML::Node loadDocument(const Context& ctx, const std::string& yaml_text) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(yaml_text);
+  } catch (const YAML::Exception& error) {
+    ctx.fail(error.mark, "", "invalid YAML: " + error.msg);
+  }
+  if (documents.empty() || (documents.size() == 1 && documents.front().IsNull())) {
+    throw InputError(ctx.displayName() +
+                     ": the problem file is empty (expected a map with terrain, start and goal)");
+  }
+  if (documents.size() > 1) {
+    ctx.fail(documents[1].Mark(), "",
+             "holds " + std::to_string(documents.size()) + " YAML documents; expected one");
+  }
+  return documents.front();
+}
+
+// The top-level map: terrain, start and goal required; vehicle read before start and goal.
+ProblemSpec parseRoot(const Context& ctx, const YAML::Node& root) {
+  const Field root_field{root, root.Mark(), ""};
+  if (!root.IsMap()) {
+    failAt(ctx, root_field,
+           "the top level must be a map of sections (terrain, vehicle, start, goal, cost, "
+           "solver, planner), got " +
+               describeNode(root));
+  }
+  const MapReader map(ctx, root_field,
+                      {"terrain", "vehicle", "start", "goal", "cost", "solver", "planner"});
+  ProblemSpec problem;
+  problem.source_file = ctx.displayName();
+  problem.terrain = parseTerrain(ctx, map.require("terrain"));
+  problem.pose_frame = problem.terrain.frame;
+  if (const std::optional<Field> vehicle = map.find("vehicle")) {
+    problem.vehicle = parseVehicle(ctx, *vehicle);
+  }
+  // Both boundary states are checked against the limits, so vehicle is read first.
+  problem.start = parseBoundary(ctx, map.require("start"), problem.vehicle.limits);
+  problem.goal = parseBoundary(ctx, map.require("goal"), problem.vehicle.limits);
+  if (const std::optional<Field> cost = map.find("cost")) problem.cost = parseCost(ctx, *cost);
+  if (const std::optional<Field> solver = map.find("solver")) {
+    problem.solver = parseSolver(ctx, *solver);
+  }
+  if (const std::optional<Field> planner = map.find("planner")) {
+    problem.planner = parsePlanner(ctx, *planner);
+  }
+  return problem;
+}
+
+// ------------------------------------------------------------------------------------------
+// Files.
+
+// The whole file as text; throws InputError when it is missing, unreadable, a directory, or
+// larger than kMaxProblemFileBytes.
+std::string readProblemFile(const fs::path& yaml_file) {
+  const std::string name = yaml_file.string();
+  std::error_code status_error;
+  const fs::file_status status = fs::status(yaml_file, status_error);
+  if (status.type() == fs::file_type::not_found) {
+    throw InputError(name + ": cannot read the problem file: no such file");
+  }
+  if (status_error) {
+    throw InputError(name + ": cannot read the problem file: " + status_error.message());
+  }
+  if (fs::is_directory(status)) {
+    throw InputError(name + ": cannot read the problem file: it is a directory");
+  }
+  errno = 0;
+  std::ifstream in(yaml_file, std::ios::binary);
+  if (!in) {
+    const std::string reason = errno != 0 ? std::strerror(errno) : "cannot open it";
+    throw InputError(name + ": cannot read the problem file: " + reason);
+  }
+  std::string text;
+  std::vector<char> chunk(kReadChunkBytes);
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxProblemFileBytes) {
+      throw InputError(name + ": the problem file is larger than " +
+                       std::to_string(kMaxProblemFileBytes >> 20) + " MiB");
+    }
+  }
+  if (in.bad()) throw InputError(name + ": cannot read the problem file: read error");
+  return text;
+}
+
+// ------------------------------------------------------------------------------------------
+// Poses on the terrain.
+
+std::string formatPoint(const Eigen::Vector2d& point) {
+  return "(" + formatCoordinate(point.x()) + ", " + formatCoordinate(point.y()) + ")";
+}
+
+// Converts one pose to local coordinates and checks it lies on a free cell of `map`; throws
+// InputError "<file>: <name>: ..." otherwise.
+Eigen::Vector2d localPoseOnMap(const std::string& file, const char* name,
+                               const BoundaryState& state, bool from_world,
+                               const terrain::ElevationMap& map) {
+  const terrain::GridGeometry& geometry = map.geometry();
+  const Eigen::Vector2d given(state.x, state.y);
+  const Eigen::Vector2d local = from_world ? geometry.toLocal(given) : given;
+  std::string where = "(x, y) = " + formatPoint(given) + " m";
+  if (from_world) where += " (world; local " + formatPoint(local) + " m)";
+  const std::string prefix = file + ": " + name + ": " + where;
+
+  const std::optional<terrain::CellIndex> cell =
+      geometry.contains(local) ? geometry.cellAt(local) : std::nullopt;
+  if (!cell) {
+    std::string extent = "local extent [0, " + formatCoordinate(geometry.width()) + "] x [0, " +
+                         formatCoordinate(geometry.height()) + "] m";
+    if (from_world) {
+      const Eigen::Vector2d low = geometry.toWorld(Eigen::Vector2d::Zero());
+      const Eigen::Vector2d high = geometry.toWorld({geometry.width(), geometry.height()});
+      extent = "world extent [" + formatCoordinate(low.x()) + ", " + formatCoordinate(high.x()) +
+               "] x [" + formatCoordinate(low.y()) + ", " + formatCoordinate(high.y()) + "] m, " +
+               extent;
+    }
+    throw InputError(prefix + " is outside the map (" + extent + ")");
+  }
+  const std::string cell_text =
+      "(row " + std::to_string(cell->row) + ", col " + std::to_string(cell->col) + ")";
+  if (map.isNoData(*cell)) throw InputError(prefix + " is on a no-data cell " + cell_text);
+  if (map.isLethal(*cell)) throw InputError(prefix + " is on a lethal cell " + cell_text);
+  return local;
+}
+
+}  // namespace
+
+ProblemSpec parseProblem(const std::string& yaml_text, const std::filesystem::path& base_dir,
+                         const std::string& display_name) {
+  const Context ctx(display_name, base_dir);
+  try {
+    return parseRoot(ctx, loadDocument(ctx, yaml_text));
+  } catch (const YAML::Exception& error) {
+    // Not expected (every access is checked first), but no yaml-cpp exception may escape.
+    ctx.fail(error.mark, "", "cannot read the YAML: " + error.msg);
+  }
+}
+
+ProblemSpec loadProblem(const std::filesystem::path& yaml_file) {
+  return parseProblem(readProblemFile(yaml_file), yaml_file.parent_path(), yaml_file.string());
+}
+
+void resolvePosesOnTerrain(ProblemSpec& problem, const terrain::ElevationMap& map) {
+  const std::string file = problem.source_file.string();
+  const bool from_world = problem.pose_frame == terrain::CoordinateFrame::kWorld;
+  const Eigen::Vector2d start = localPoseOnMap(file, "start", problem.start, from_world, map);
+  const Eigen::Vector2d goal = localPoseOnMap(file, "goal", problem.goal, from_world, map);
+  problem.start.x = start.x();
+  problem.start.y = start.y();
+  problem.goal.x = goal.x();
+  problem.goal.y = goal.y();
+  problem.pose_frame = terrain::CoordinateFrame::kLocal;
+}
+
+}  // namespace terratraj::apps

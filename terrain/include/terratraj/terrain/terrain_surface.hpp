@@ -1,0 +1,84 @@
+#pragma once
+// TerrainSurface: the continuous surface z = g(x, y) interpolated from an ElevationMap.
+//
+// Heights live at cell centres. A query at a local point (x, y) [m] returns the height [m] and
+// its analytic gradient (dz/dx, dz/dy) [m/m]:
+//  - kNearest:  the height of the cell holding the point; the gradient is that cell's
+//               central-difference gradient of the grid (one-sided on the border), i.e. the
+//               "normal_*" layers of computeDerivedLayers(). (The piecewise-constant surface
+//               itself has gradient 0 almost everywhere; this is the useful answer.)
+//  - kBilinear: bilinear between the four surrounding centres; C0, gradient exact
+//               inside each cell of centres.
+//  - kBicubic:  Catmull-Rom (Keys, a = -1/2) cubic convolution over a 4 x 4 stencil; C1, so
+//               optimisers see a continuous gradient. Where the stencil reaches one cell beyond
+//               the grid, the missing samples are extrapolated linearly from the two outermost
+//               ones, so that planes are reproduced exactly up to the outermost centres.
+// Border: inside the extent but beyond the outermost centres (the half-cell band on each edge)
+// the surface is extended as a constant along the outward axis (gradient 0 along it): defined
+// and continuous, though not C1 across that line. Nothing is read out of bounds.
+// Failure: std::nullopt outside the extent [0, width] x [0, height], for NaN coordinates, and
+// where the stencil touches a no-data cell (1 cell for nearest, 2 x 2 for bilinear, 4 x 4 for
+// bicubic): a no-data hole is surrounded by a band with no value, never an invented height.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string_view>
+
+#include "terratraj/terrain/elevation_map.hpp"
+
+namespace terratraj::terrain {
+
+/// How heights are interpolated between cell centres.
+enum class Interpolation { kNearest, kBilinear, kBicubic };
+
+/// Parses "nearest" / "bilinear" / "bicubic".
+std::optional<Interpolation> parseInterpolation(std::string_view name);
+/// The name parseInterpolation() accepts.
+const char* interpolationName(Interpolation method);
+
+/// Height [m] and its gradient (dz/dx, dz/dy) [m/m] at one point.
+struct HeightSample {
+  double height = 0.0;
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
+
+  /// Upward unit normal of the surface, (-gx, -gy, 1) / norm.
+  Eigen::Vector3d normal() const;
+  /// Slope angle [rad] = atan(|gradient|).
+  double slope() const;
+};
+
+/// Read-only view of an ElevationMap as a surface. Cheap to copy; the map must outlive it.
+class TerrainSurface {
+ public:
+  TerrainSurface(const ElevationMap& map, Interpolation method);
+
+  const ElevationMap& map() const { return *map_; }
+  Interpolation method() const { return method_; }
+
+  /// Height and gradient at a local point; std::nullopt off the map or near no data.
+  std::optional<HeightSample> sample(const Eigen::Vector2d& local) const;
+  /// Height only (same rules as sample()).
+  std::optional<double> height(const Eigen::Vector2d& local) const;
+
+ private:
+  std::optional<HeightSample> sampleNearest(double x, double y) const;
+  std::optional<HeightSample> sampleBilinear(double x, double y) const;
+  std::optional<HeightSample> sampleBicubic(double x, double y) const;
+  // The 4 x 4 heights from (row0, col0), extrapolated linearly one cell beyond the grid.
+  void gatherStencil(int row0, int col0, double (&z)[4][4]) const;
+  double extrapolatedHeight(int row, int col) const;
+
+  const ElevationMap* map_;
+  Interpolation method_;
+  const float* heights_;
+  int rows_;
+  int cols_;
+  double inv_cell_;
+};
+
+/// Central-difference gradient of the grid at a cell (one-sided at the border; a no-data
+/// neighbour falls back to the one-sided difference). std::nullopt if the cell is no data or
+/// both neighbours along an axis are no data.
+std::optional<Eigen::Vector2d> cellGradient(const ElevationMap& map, CellIndex cell);
+
+}  // namespace terratraj::terrain

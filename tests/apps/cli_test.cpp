@@ -1,0 +1,189 @@
+#include "terratraj/apps/cli.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "terratraj/terrain/raster_io.hpp"
+#include "terratraj/terrain/terrain_generator.hpp"
+
+namespace terratraj::apps {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+struct CliResult {
+  int status;
+  std::string out;
+  std::string err;
+};
+
+CliResult run(std::vector<std::string> args) {
+  args.insert(args.begin(), "terratraj");
+  std::vector<const char*> argv;
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  const int status = runCli(static_cast<int>(argv.size()), argv.data(), out, err);
+  return {status, out.str(), err.str()};
+}
+
+std::string sharedData(const std::string& name) {
+  return std::string(TERRATRAJ_SHARED_DATA_DIR) + "/" + name;
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("terratraj_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
+  fs::path dir_;
+};
+
+TEST_F(CliTest, HelpListsTheCommands) {
+  const CliResult r = run({"--help"});
+  EXPECT_EQ(r.status, kExitSuccess);
+  EXPECT_THAT(r.out, HasSubstr("demo"));
+  EXPECT_THAT(r.out, HasSubstr("terrain"));
+  const CliResult generate_help = run({"terrain", "generate", "--help"});
+  EXPECT_EQ(generate_help.status, kExitSuccess);
+  EXPECT_THAT(generate_help.out, HasSubstr("dead_end"));
+  EXPECT_THAT(generate_help.out, HasSubstr("--seed"));
+}
+
+TEST_F(CliTest, UsageErrorsExitWithStatus2) {
+  EXPECT_EQ(run({}).status, kExitBadInput);
+  EXPECT_EQ(run({"fly"}).status, kExitBadInput);
+  EXPECT_EQ(run({"terrain"}).status, kExitBadInput);
+  EXPECT_EQ(run({"terrain", "info"}).status, kExitBadInput);
+  const CliResult r = run({"terrain", "generate", "mountains", "--out", path("m.tif"), "--json"});
+  EXPECT_EQ(r.status, kExitBadInput);
+  EXPECT_THAT(r.err, HasSubstr("mountains"));
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["status"], "error");
+  EXPECT_THAT(json["error"].get<std::string>(), HasSubstr("mountains"));
+}
+
+TEST_F(CliTest, TerrainInfoReportsTheGully) {
+  const CliResult r = run({"terrain", "info", sharedData("west_bijou_gully.asc"), "--json"});
+  ASSERT_EQ(r.status, kExitSuccess) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);  // exactly one JSON object
+  EXPECT_EQ(json["cols"], 43);
+  EXPECT_EQ(json["rows"], 89);
+  EXPECT_EQ(json["cell_m"], 3.0);
+  EXPECT_GT(json["no_data_cells"].get<int>(), 0);
+  EXPECT_EQ(json["no_data_cells"].get<int>() + json["valid_cells"].get<int>(), 43 * 89);
+  EXPECT_NEAR(json["height_m"]["min"].get<double>(), 1680.8, 0.1);
+  EXPECT_NEAR(json["extent_world_m"]["x_min"].get<double>(), 559705.0, 1e-6);
+  const CliResult text = run({"terrain", "info", sharedData("west_bijou_gully.asc")});
+  EXPECT_EQ(text.status, kExitSuccess);
+  EXPECT_THAT(text.out, HasSubstr("43 x 89 cells (cols x rows), cell 3.00 m"));
+}
+
+TEST_F(CliTest, TerrainInfoBadFiles) {
+  const CliResult missing = run({"terrain", "info", path("nope.tif"), "--json"});
+  EXPECT_EQ(missing.status, kExitBadInput);
+  EXPECT_THAT(missing.err, HasSubstr("nope.tif: no such file"));
+  EXPECT_EQ(nlohmann::json::parse(missing.out)["status"], "error");
+  write("garbage.asc", "ncols 3\nnrows 2\ncellsize x\n");
+  EXPECT_EQ(run({"terrain", "info", path("garbage.asc")}).status, kExitBadInput);
+  const CliResult png = run({"terrain", "info", path("nope.png"), "--cell", "-1"});
+  EXPECT_EQ(png.status, kExitBadInput);
+}
+
+TEST_F(CliTest, TerrainGenerateWritesEveryKind) {
+  for (const std::string& kind : terrain::terrainKindNames()) {
+    const std::string file = path(kind + ".tif");
+    const CliResult r = run({"terrain", "generate", kind, "--out", file, "--rows", "64", "--cols",
+                             "80", "--cell", "0.5", "--seed", "3", "--json"});
+    ASSERT_EQ(r.status, kExitSuccess) << kind << ": " << r.err;
+    const nlohmann::json json = nlohmann::json::parse(r.out);
+    EXPECT_EQ(json["kind"], kind);
+    EXPECT_EQ(json["rows"], 64);
+    const terrain::ElevationMap map = terrain::loadElevationMap(file);
+    EXPECT_EQ(map.geometry().cols, 80);
+    EXPECT_DOUBLE_EQ(map.geometry().cell, 0.5);
+  }
+  EXPECT_EQ(run({"terrain", "generate", "hills", "--out", path("x.tif"), "--rows", "1"}).status,
+            kExitBadInput);
+  EXPECT_EQ(run({"terrain", "generate", "hills", "--out", path("x.tif"), "--cell", "abc"}).status,
+            kExitBadInput);
+  write("plain_file", "not a folder");  // a folder cannot be made below a file, even by root
+  const CliResult unwritable = run({"terrain", "generate", "hills", "--out", path("plain_file/x.tif")});
+  EXPECT_EQ(unwritable.status, kExitBadInput);
+  EXPECT_THAT(unwritable.err, HasSubstr("plain_file"));
+}
+
+TEST_F(CliTest, DemoWritesTerrainAndSummary) {
+  const CliResult r = run({"demo", "--out-dir", path("demo"), "--rows", "96", "--cols", "96", "--json"});
+  ASSERT_EQ(r.status, kExitSuccess) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["status"], "ok");
+  EXPECT_TRUE(fs::exists(path("demo/terrain.tif")));
+  std::ifstream summary(path("demo/summary.json"));
+  EXPECT_EQ(nlohmann::json::parse(summary), json);
+  EXPECT_EQ(terrain::loadElevationMap(path("demo/terrain.tif")).geometry().rows, 96);
+}
+
+TEST_F(CliTest, CheckReadsAProblemAndItsTerrain) {
+  write("problem.yaml",
+        "terrain:\n  generate: {kind: obstacles, rows: 128, cols: 128, cell: 0.25, seed: 1}\n"
+        "vehicle:\n  model: rocker_bogie\n  limits: {v_max: 1.0, pitch_max_deg: 17}\n"
+        "start: {x: 3.2, y: 16.0, heading_deg: 0}\n"
+        "goal:  {x: 28.8, y: 16.0, heading_deg: 90}\n");
+  const CliResult ok = run({"check", path("problem.yaml"), "--json"});
+  ASSERT_EQ(ok.status, kExitSuccess) << ok.err;
+  const nlohmann::json json = nlohmann::json::parse(ok.out);
+  EXPECT_EQ(json["problem"]["vehicle"]["model"], "rocker_bogie");
+  EXPECT_NEAR(json["problem"]["goal"]["heading"].get<double>(), M_PI / 2, 1e-12);
+  EXPECT_GT(json["terrain"]["lethal_cells"].get<int>(), 0);
+
+  write("off_map.yaml",
+        "terrain:\n  generate: {kind: flat, rows: 64, cols: 64, cell: 0.25}\n"
+        "start: {x: 3.0, y: 3.0, heading_deg: 0}\n"
+        "goal:  {x: 300.0, y: 3.0, heading_deg: 0}\n");
+  const CliResult off = run({"check", path("off_map.yaml")});
+  EXPECT_EQ(off.status, kExitBadInput);
+  EXPECT_THAT(off.err, HasSubstr("goal"));
+  EXPECT_THAT(off.err, HasSubstr("outside the map"));
+
+  write("bad_key.yaml", "terrain:\n  generate: {kind: flat}\nstart: {x: 1, y: 1, heading: 0}\n"
+                        "goal: {x: 2, y: 1, heading: 0}\nvehicle:\n  limits: {v_max: -1}\n");
+  const CliResult bad = run({"check", path("bad_key.yaml"), "--json"});
+  EXPECT_EQ(bad.status, kExitBadInput);
+  EXPECT_THAT(bad.err, HasSubstr("vehicle.limits.v_max: must be > 0"));
+  EXPECT_THAT(nlohmann::json::parse(bad.out)["error"].get<std::string>(), HasSubstr("bad_key.yaml:6"));
+
+  write("terrain_missing.yaml", "terrain:\n  file: dem/missing.tif\nstart: {x: 1, y: 1, heading: 0}\n"
+                                "goal: {x: 2, y: 1, heading: 0}\n");
+  const CliResult missing = run({"check", path("terrain_missing.yaml")});
+  EXPECT_EQ(missing.status, kExitBadInput);
+  EXPECT_THAT(missing.err, HasSubstr("dem/missing.tif: no such file"));
+}
+
+TEST_F(CliTest, CheckOnARealDemInWorldCoordinates) {
+  write("gully.yaml", "terrain:\n  file: " + sharedData("west_bijou_gully.asc") +
+                          "\n  frame: world\nstart: {x: 559770, y: 4380350, heading_deg: 90}\n"
+                          "goal: {x: 559770, y: 4380400, heading_deg: 90}\n");
+  const CliResult r = run({"check", path("gully.yaml"), "--json"});
+  ASSERT_EQ(r.status, kExitSuccess) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(json["problem"]["start"]["x"].get<double>(), 65.0, 1e-6);  // now local
+  EXPECT_NEAR(json["problem"]["start"]["y"].get<double>(), 130.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace terratraj::apps

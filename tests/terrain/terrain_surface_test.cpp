@@ -1,0 +1,167 @@
+#include "terratraj/terrain/terrain_surface.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "test_maps.hpp"
+
+namespace terratraj::terrain {
+namespace {
+
+using testing::planeMap;
+using testing::smoothMap;
+
+constexpr Interpolation kSmoothMethods[] = {Interpolation::kBilinear, Interpolation::kBicubic};
+
+// Central finite difference of the surface's height.
+Eigen::Vector2d finiteDifferenceGradient(const TerrainSurface& surface, const Eigen::Vector2d& p,
+                                         double h) {
+  const double dx = (*surface.height(p + Eigen::Vector2d(h, 0)) -
+                     *surface.height(p - Eigen::Vector2d(h, 0))) / (2 * h);
+  const double dy = (*surface.height(p + Eigen::Vector2d(0, h)) -
+                     *surface.height(p - Eigen::Vector2d(0, h))) / (2 * h);
+  return {dx, dy};
+}
+
+TEST(TerrainSurface, AnalyticGradientMatchesFiniteDifferencesEverywhere) {
+  const ElevationMap map = smoothMap(40, 50, 0.5);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> ux(0.3, map.geometry().width() - 0.3);
+  std::uniform_real_distribution<double> uy(0.3, map.geometry().height() - 0.3);
+  for (const Interpolation method : kSmoothMethods) {
+    const TerrainSurface surface(map, method);
+    for (int i = 0; i < 2000; ++i) {
+      const Eigen::Vector2d p(ux(rng), uy(rng));
+      // Stay clear of cell-centre lines, where bilinear has a kink.
+      const double fx = p.x() / 0.5 - 0.5 - std::floor(p.x() / 0.5 - 0.5);
+      const double fy = p.y() / 0.5 - 0.5 - std::floor(p.y() / 0.5 - 0.5);
+      if (fx < 0.01 || fx > 0.99 || fy < 0.01 || fy > 0.99) continue;
+      const HeightSample s = *surface.sample(p);
+      const Eigen::Vector2d fd = finiteDifferenceGradient(surface, p, 1e-6);
+      EXPECT_NEAR(s.gradient.x(), fd.x(), 1e-6) << interpolationName(method) << " at " << p.transpose();
+      EXPECT_NEAR(s.gradient.y(), fd.y(), 1e-6) << interpolationName(method) << " at " << p.transpose();
+    }
+  }
+}
+
+TEST(TerrainSurface, InterpolatesSamplesExactlyAtCellCentres) {
+  const ElevationMap map = smoothMap(12, 9, 0.25);
+  for (const Interpolation method :
+       {Interpolation::kNearest, Interpolation::kBilinear, Interpolation::kBicubic}) {
+    const TerrainSurface surface(map, method);
+    for (int r = 0; r < 12; ++r) {
+      for (int c = 0; c < 9; ++c) {
+        EXPECT_NEAR(*surface.height(map.geometry().cellCenter({r, c})), map.elevation()(r, c), 1e-6);
+      }
+    }
+  }
+}
+
+TEST(TerrainSurface, ReproducesPlanesExactly) {
+  const ElevationMap map = planeMap(10, 12, 0.5, 0.3, -0.2, 4.0);
+  for (const Interpolation method : kSmoothMethods) {
+    const TerrainSurface surface(map, method);
+    // Inside the hull of cell centres (the border band is constant-extended).
+    for (double x = 0.3; x < 5.7; x += 0.37) {
+      for (double y = 0.3; y < 4.7; y += 0.41) {
+        const HeightSample s = *surface.sample({x, y});
+        EXPECT_NEAR(s.height, 0.3 * x - 0.2 * y + 4.0, 1e-5);
+        EXPECT_NEAR(s.gradient.x(), 0.3, 1e-5);
+        EXPECT_NEAR(s.gradient.y(), -0.2, 1e-5);
+      }
+    }
+  }
+}
+
+TEST(TerrainSurface, BicubicGradientIsContinuousAcrossCellBoundaries) {
+  const ElevationMap map = smoothMap(20, 20, 1.0);
+  const TerrainSurface bicubic(map, Interpolation::kBicubic);
+  for (int k = 2; k < 18; ++k) {
+    const double x = k + 0.5;  // a line of cell centres: a boundary between interpolation cells
+    const Eigen::Vector2d left = bicubic.sample({x - 1e-9, 7.3})->gradient;
+    const Eigen::Vector2d right = bicubic.sample({x + 1e-9, 7.3})->gradient;
+    EXPECT_NEAR(left.x(), right.x(), 1e-6);
+    EXPECT_NEAR(left.y(), right.y(), 1e-6);
+  }
+}
+
+TEST(TerrainSurface, NearestGradientIsTheGridsCentralDifference) {
+  const ElevationMap map = smoothMap(10, 10, 0.5);
+  const TerrainSurface nearest(map, Interpolation::kNearest);
+  const CellIndex cell{4, 6};
+  const HeightSample s = *nearest.sample(map.geometry().cellCenter(cell) + Eigen::Vector2d(0.1, -0.1));
+  const GridLayer& z = map.elevation();
+  EXPECT_DOUBLE_EQ(s.height, z(cell));
+  EXPECT_NEAR(s.gradient.x(), (z(4, 7) - z(4, 5)) / 1.0, 1e-12);
+  EXPECT_NEAR(s.gradient.y(), (z(5, 6) - z(3, 6)) / 1.0, 1e-12);
+}
+
+TEST(TerrainSurface, DefinedOnTheWholeExtentAndNothingOutside) {
+  const ElevationMap map = smoothMap(8, 6, 1.0);
+  for (const Interpolation method :
+       {Interpolation::kNearest, Interpolation::kBilinear, Interpolation::kBicubic}) {
+    const TerrainSurface surface(map, method);
+    // Corners and edges of the extent.
+    for (const Eigen::Vector2d& p : {Eigen::Vector2d(0, 0), Eigen::Vector2d(6, 8),
+                                    Eigen::Vector2d(0, 8), Eigen::Vector2d(6, 0),
+                                    Eigen::Vector2d(0.2, 4.0), Eigen::Vector2d(5.9, 7.95)}) {
+      EXPECT_TRUE(surface.sample(p).has_value()) << interpolationName(method) << p.transpose();
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const Eigen::Vector2d& p :
+         {Eigen::Vector2d(-1e-9, 1), Eigen::Vector2d(6.0001, 1), Eigen::Vector2d(1, 8.5),
+          Eigen::Vector2d(nan, 1), Eigen::Vector2d(1, -std::numeric_limits<double>::infinity())}) {
+      EXPECT_FALSE(surface.sample(p).has_value()) << interpolationName(method) << p.transpose();
+    }
+  }
+}
+
+TEST(TerrainSurface, BorderBandIsConstantExtended) {
+  const ElevationMap map = smoothMap(8, 6, 1.0);
+  const TerrainSurface bilinear(map, Interpolation::kBilinear);
+  const HeightSample at_centre = *bilinear.sample({0.5, 3.2});
+  const HeightSample in_band = *bilinear.sample({0.1, 3.2});
+  EXPECT_NEAR(in_band.height, at_centre.height, 1e-12);
+  EXPECT_EQ(in_band.gradient.x(), 0.0);
+}
+
+TEST(TerrainSurface, NoValueWhereTheStencilTouchesNoData) {
+  ElevationMap map = smoothMap(12, 12, 1.0);
+  map.elevation()(6, 6) = std::numeric_limits<float>::quiet_NaN();
+  const TerrainSurface nearest(map, Interpolation::kNearest);
+  const TerrainSurface bilinear(map, Interpolation::kBilinear);
+  const TerrainSurface bicubic(map, Interpolation::kBicubic);
+  // Inside the no-data cell.
+  EXPECT_FALSE(nearest.sample({6.5, 6.5}));
+  // Between its centre and a neighbour's: bilinear and bicubic stencils include it.
+  EXPECT_FALSE(bilinear.sample({7.0, 7.0}));
+  EXPECT_FALSE(bicubic.sample({7.0, 7.0}));
+  // Two cells away: bilinear is fine, bicubic's 4 x 4 stencil still sees it.
+  EXPECT_TRUE(bilinear.sample({8.0, 8.0}));
+  EXPECT_FALSE(bicubic.sample({7.9, 7.9}));
+  // Far away: everything is fine.
+  EXPECT_TRUE(bicubic.sample({10.0, 2.0}));
+  EXPECT_TRUE(nearest.sample({7.6, 6.5}));
+}
+
+TEST(TerrainSurface, NormalAndSlope) {
+  const HeightSample s{1.0, Eigen::Vector2d(std::tan(0.3), 0.0)};
+  EXPECT_NEAR(s.slope(), 0.3, 1e-12);
+  const Eigen::Vector3d n = s.normal();
+  EXPECT_NEAR(n.norm(), 1.0, 1e-12);
+  EXPECT_NEAR(n.x(), -std::sin(0.3), 1e-12);
+  EXPECT_NEAR(n.z(), std::cos(0.3), 1e-12);
+}
+
+TEST(TerrainSurface, ParsesInterpolationNames) {
+  EXPECT_EQ(parseInterpolation("bicubic"), Interpolation::kBicubic);
+  EXPECT_EQ(parseInterpolation("nearest"), Interpolation::kNearest);
+  EXPECT_EQ(parseInterpolation("cubic"), std::nullopt);
+  EXPECT_STREQ(interpolationName(Interpolation::kBilinear), "bilinear");
+}
+
+}  // namespace
+}  // namespace terratraj::terrain
