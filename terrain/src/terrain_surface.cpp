@@ -36,6 +36,16 @@ struct CubicWeights {
   double dw[4];
 };
 
+// Second derivatives of the Catmull-Rom weights.
+struct CubicCurvatures {
+  double d2w[4];
+};
+
+CubicCurvatures catmullRomCurvatures(double t) {
+  return {{0.5 * (4.0 - 6.0 * t), 0.5 * (-10.0 + 18.0 * t), 0.5 * (8.0 - 18.0 * t),
+           0.5 * (-2.0 + 6.0 * t)}};
+}
+
 CubicWeights catmullRomWeights(double t) {
   const double t2 = t * t;
   const double t3 = t2 * t;
@@ -123,6 +133,60 @@ std::optional<HeightSample> TerrainSurface::sample(const Eigen::Vector2d& local)
       return sampleBicubic(x, y);
   }
   return std::nullopt;
+}
+
+std::optional<SurfaceDerivatives> TerrainSurface::sampleWithHessian(
+    const Eigen::Vector2d& local) const {
+  const double x = local.x();
+  const double y = local.y();
+  const GridGeometry& g = map_->geometry();
+  if (!(x >= 0.0 && y >= 0.0 && x <= g.width() && y <= g.height())) return std::nullopt;
+  if (method_ == Interpolation::kNearest) {
+    const std::optional<HeightSample> s = sampleNearest(x, y);
+    if (!s) return std::nullopt;
+    return SurfaceDerivatives{s->height, s->gradient, Eigen::Matrix2d::Zero()};
+  }
+  const AxisPosition ax = locateOnAxis(x, inv_cell_, cols_);
+  const AxisPosition ay = locateOnAxis(y, inv_cell_, rows_);
+  SurfaceDerivatives d;
+  if (method_ == Interpolation::kBilinear) {
+    const std::optional<HeightSample> s = sampleBilinear(x, y);
+    if (!s) return std::nullopt;
+    const float* row0 = heights_ + static_cast<std::size_t>(ay.index) * cols_ + ax.index;
+    const float* row1 = row0 + cols_;
+    const double twist = static_cast<double>(row1[1]) - row1[0] - row0[1] + row0[0];
+    d.height = s->height;
+    d.gradient = s->gradient;
+    d.hessian(0, 1) = d.hessian(1, 0) = twist * ax.dt_dcoord * ay.dt_dcoord;
+    return d;
+  }
+  const CubicWeights wx = catmullRomWeights(ax.t);
+  const CubicWeights wy = catmullRomWeights(ay.t);
+  const CubicCurvatures cx = catmullRomCurvatures(ax.t);
+  const CubicCurvatures cy = catmullRomCurvatures(ay.t);
+  double z[4][4];
+  gatherStencil(ay.index - 1, ax.index - 1, z);
+  double h = 0.0, hx = 0.0, hy = 0.0, hxx = 0.0, hxy = 0.0, hyy = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    double value = 0.0, slope = 0.0, bend = 0.0;
+    for (int j = 0; j < 4; ++j) {
+      value += wx.w[j] * z[i][j];
+      slope += wx.dw[j] * z[i][j];
+      bend += cx.d2w[j] * z[i][j];
+    }
+    h += wy.w[i] * value;
+    hx += wy.w[i] * slope;
+    hy += wy.dw[i] * value;
+    hxx += wy.w[i] * bend;
+    hxy += wy.dw[i] * slope;
+    hyy += cy.d2w[i] * value;
+  }
+  const double du = ax.dt_dcoord, dv = ay.dt_dcoord;
+  d.height = h;
+  d.gradient = Eigen::Vector2d(hx * du, hy * dv);
+  d.hessian << hxx * du * du, hxy * du * dv, hxy * du * dv, hyy * dv * dv;
+  if (!std::isfinite(h) || !d.gradient.allFinite() || !d.hessian.allFinite()) return std::nullopt;
+  return d;
 }
 
 std::optional<double> TerrainSurface::height(const Eigen::Vector2d& local) const {

@@ -47,6 +47,40 @@ TEST(TerrainSurface, AnalyticGradientMatchesFiniteDifferencesEverywhere) {
   }
 }
 
+TEST(TerrainSurface, HessianMatchesFiniteDifferencesOfTheGradient) {
+  const ElevationMap map = smoothMap(40, 50, 0.5);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> ux(0.3, map.geometry().width() - 0.3);
+  std::uniform_real_distribution<double> uy(0.3, map.geometry().height() - 0.3);
+  for (const Interpolation method : kSmoothMethods) {
+    const TerrainSurface surface(map, method);
+    int checked = 0;
+    for (int i = 0; i < 2000; ++i) {
+      const Eigen::Vector2d p(ux(rng), uy(rng));
+      const double fx = p.x() / 0.5 - 0.5 - std::floor(p.x() / 0.5 - 0.5);
+      const double fy = p.y() / 0.5 - 0.5 - std::floor(p.y() / 0.5 - 0.5);
+      if (fx < 0.01 || fx > 0.99 || fy < 0.01 || fy > 0.99) continue;  // inside one cell
+      const SurfaceDerivatives d = *surface.sampleWithHessian(p);
+      const HeightSample s = *surface.sample(p);
+      EXPECT_DOUBLE_EQ(d.height, s.height);
+      EXPECT_NEAR((d.gradient - s.gradient).norm(), 0.0, 1e-12);
+      const double h = 1e-6;
+      for (int k = 0; k < 2; ++k) {
+        const Eigen::Vector2d step = Eigen::Vector2d::Unit(k) * h;
+        const Eigen::Vector2d fd =
+            (surface.sample(p + step)->gradient - surface.sample(p - step)->gradient) / (2 * h);
+        EXPECT_NEAR(d.hessian(0, k), fd.x(), 1e-5) << interpolationName(method);
+        EXPECT_NEAR(d.hessian(1, k), fd.y(), 1e-5) << interpolationName(method);
+      }
+      ++checked;
+    }
+    EXPECT_GT(checked, 1500);
+  }
+  const TerrainSurface nearest(map, Interpolation::kNearest);
+  EXPECT_EQ(nearest.sampleWithHessian({3.3, 4.4})->hessian, Eigen::Matrix2d::Zero());
+  EXPECT_FALSE(nearest.sampleWithHessian({-1.0, 4.4}));
+}
+
 TEST(TerrainSurface, InterpolatesSamplesExactlyAtCellCentres) {
   const ElevationMap map = smoothMap(12, 9, 0.25);
   for (const Interpolation method :

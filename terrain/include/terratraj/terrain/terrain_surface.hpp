@@ -47,6 +47,16 @@ struct HeightSample {
   double slope() const;
 };
 
+/// Height [m], gradient [m/m] and Hessian [1/m] (d2z/dx2, d2z/dxdy; d2z/dydx, d2z/dy2).
+/// The Hessian is that of the interpolant inside an interpolation cell: 0 for nearest, only the
+/// cross term for bilinear, the full cubic's for bicubic (discontinuous across cells: the
+/// bicubic surface is C1, not C2).
+struct SurfaceDerivatives {
+  double height = 0.0;
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d hessian = Eigen::Matrix2d::Zero();
+};
+
 /// Read-only view of an ElevationMap as a surface. Cheap to copy; the map must outlive it.
 class TerrainSurface {
  public:
@@ -57,6 +67,8 @@ class TerrainSurface {
 
   /// Height and gradient at a local point; std::nullopt off the map or near no data.
   std::optional<HeightSample> sample(const Eigen::Vector2d& local) const;
+  /// Height, gradient and Hessian at a local point (same rules as sample()).
+  std::optional<SurfaceDerivatives> sampleWithHessian(const Eigen::Vector2d& local) const;
   /// Height only (same rules as sample()).
   std::optional<double> height(const Eigen::Vector2d& local) const;
 
