@@ -1,0 +1,237 @@
+#include "terratraj/models/rover_integrator.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "terratraj/models/point_attitude_model.hpp"
+#include "terratraj/models/rocker_bogie_attitude_model.hpp"
+#include "terratraj/terrain/terrain_generator.hpp"
+
+namespace terratraj::models {
+namespace {
+
+using terrain::ElevationMap;
+using terrain::Interpolation;
+using terrain::TerrainSurface;
+
+ElevationMap generated(terrain::TerrainKind kind, int size = 160) {
+  terrain::GeneratorOptions options;
+  options.kind = kind;
+  options.rows = options.cols = size;
+  options.cell = 0.25;
+  options.seed = 9;
+  return terrain::generateTerrain(options);
+}
+
+Eigen::Vector3d integrateTo(const RoverKinematics& kinematics, IntegratorOptions options,
+                            const Eigen::Vector3d& start, const ControlProfile& controls,
+                            double duration) {
+  RoverIntegrator integrator(kinematics, options);
+  IntegrationResult result;
+  integrator.integrate(start, controls, duration, {}, result);
+  EXPECT_EQ(result.status, IntegrationStatus::kOk) << result.message;
+  return result.final_state;
+}
+
+IntegratorOptions cvodes(double tolerance) {
+  IntegratorOptions options;
+  options.method = IntegrationMethod::kCvodes;
+  options.relative_tolerance = tolerance;
+  options.absolute_tolerance = tolerance;
+  return options;
+}
+
+IntegratorOptions fixedStep(IntegrationMethod method, double step) {
+  IntegratorOptions options;
+  options.method = method;
+  options.step = step;
+  return options;
+}
+
+TEST(RoverKinematics, RatesAndJacobiansMatchFiniteDifferences) {
+  const ElevationMap map = generated(terrain::TerrainKind::kHills, 96);
+  const TerrainSurface surface(map, Interpolation::kBicubic);
+  RockerBogieSolverOptions precise;
+  precise.tolerance = 1e-12;
+  const RockerBogieAttitudeModel model(surface, RockerBogieGeometry{}, precise);
+  const RoverKinematics kinematics(model);
+  AttitudeWorkspace workspace;
+  const Eigen::Matrix<double, 5, 1> state = (Eigen::Matrix<double, 5, 1>() << 11.3, 9.7, 0.8, 0.7, 0.25).finished();
+  const Eigen::Vector2d control(0.3, -0.1);
+  RoverStateSpaceRates rates;
+  ASSERT_EQ(kinematics.stateSpaceRates(state, control, workspace, rates), AttitudeStatus::kOk);
+  // The reduced rates: x' = v cos(heading) cos(pitch), ...
+  const double pitch = rates.attitude.attitude.pitch, roll = rates.attitude.attitude.roll;
+  EXPECT_NEAR(rates.rate(0), 0.7 * std::cos(0.8) * std::cos(pitch), 1e-14);
+  EXPECT_NEAR(rates.rate(2), 0.25 * std::cos(roll) / std::cos(pitch), 1e-14);
+  const double h = 1e-6;
+  for (int k = 0; k < 5; ++k) {
+    Eigen::Matrix<double, 5, 1> plus = state, minus = state;
+    plus(k) += h;
+    minus(k) -= h;
+    RoverStateSpaceRates a, b;
+    AttitudeWorkspace cold;
+    ASSERT_EQ(kinematics.stateSpaceRates(plus, control, cold, a), AttitudeStatus::kOk);
+    cold.has_warm_start = false;
+    ASSERT_EQ(kinematics.stateSpaceRates(minus, control, cold, b), AttitudeStatus::kOk);
+    const Eigen::Matrix<double, 5, 1> fd = (a.rate - b.rate) / (2 * h);
+    EXPECT_LT((rates.d_state.col(k) - fd).cwiseAbs().maxCoeff(), 1e-6) << "state " << k;
+  }
+  for (int k = 0; k < 2; ++k) {
+    Eigen::Vector2d plus = control, minus = control;
+    plus(k) += h;
+    minus(k) -= h;
+    RoverStateSpaceRates a, b;
+    ASSERT_EQ(kinematics.stateSpaceRates(state, plus, workspace, a), AttitudeStatus::kOk);
+    ASSERT_EQ(kinematics.stateSpaceRates(state, minus, workspace, b), AttitudeStatus::kOk);
+    EXPECT_LT((rates.d_control.col(k) - (a.rate - b.rate) / (2 * h)).cwiseAbs().maxCoeff(), 1e-8);
+  }
+}
+
+TEST(RoverIntegrator, ConstantControlsOnFlatGroundGiveTheExactArc) {
+  const ElevationMap map = generated(terrain::TerrainKind::kFlat, 256);
+  const TerrainSurface surface(map, Interpolation::kBilinear);
+  const PointAttitudeModel model(surface);
+  const RoverKinematics kinematics(model);
+  const double v = 1.0, omega = 0.3, duration = 10.0, heading0 = 0.4;
+  const Eigen::Vector3d start(32.0, 30.0, heading0);
+  const Eigen::Vector3d exact(
+      start.x() + v / omega * (std::sin(heading0 + omega * duration) - std::sin(heading0)),
+      start.y() - v / omega * (std::cos(heading0 + omega * duration) - std::cos(heading0)),
+      heading0 + omega * duration);
+  const PolynomialControls controls({v}, {omega});
+  EXPECT_LT((integrateTo(kinematics, cvodes(1e-13), start, controls, duration) - exact).norm(), 1e-9);
+  EXPECT_LT((integrateTo(kinematics, fixedStep(IntegrationMethod::kRk4, 1e-3), start, controls,
+                         duration) - exact).norm(), 1e-9);
+  // Explicit Euler is first order: 1e-4 s steps leave an error of order 1e-4 m over 10 s.
+  const double euler_error = (integrateTo(kinematics, fixedStep(IntegrationMethod::kEuler, 1e-4),
+                                          start, controls, duration) - exact).norm();
+  EXPECT_LT(euler_error, 1e-3);
+  EXPECT_GT(euler_error, 1e-6);
+}
+
+TEST(RoverIntegrator, TheThreeMethodsAgreeOnRoughTerrain) {
+  const ElevationMap map = generated(terrain::TerrainKind::kHills);
+  const TerrainSurface surface(map, Interpolation::kBicubic);
+  const RockerBogieAttitudeModel model(surface);
+  const RoverKinematics kinematics(model);
+  const PolynomialControls controls({0.5, 0.05}, {0.2, -0.03});
+  const Eigen::Vector3d start(8.0, 18.0, 0.3);
+  const Eigen::Vector3d reference = integrateTo(kinematics, cvodes(1e-11), start, controls, 8.0);
+  const Eigen::Vector3d cvodes_default = integrateTo(kinematics, IntegratorOptions{}, start, controls, 8.0);
+  const Eigen::Vector3d rk4 = integrateTo(kinematics, fixedStep(IntegrationMethod::kRk4, 0.01), start, controls, 8.0);
+  const Eigen::Vector3d euler = integrateTo(kinematics, fixedStep(IntegrationMethod::kEuler, 0.001), start, controls, 8.0);
+  EXPECT_LT((cvodes_default - reference).norm(), 1e-6);  // rtol 1e-8
+  EXPECT_LT((rk4 - reference).norm(), 1e-5);
+  EXPECT_LT((euler - reference).norm(), 1e-2);
+  EXPECT_GT((reference.head<2>() - start.head<2>()).norm(), 3.0);  // it really went somewhere
+}
+
+// Central differences of the final state by each control parameter.
+Eigen::MatrixXd finiteDifferenceSensitivity(const RoverKinematics& kinematics,
+                                            const IntegratorOptions& options,
+                                            const Eigen::Vector3d& start,
+                                            const PolynomialControls& controls, double duration,
+                                            double h) {
+  const Eigen::VectorXd q = controls.parameters();
+  Eigen::MatrixXd fd(3, q.size());
+  IntegratorOptions plain = options;
+  plain.sensitivities = false;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    PolynomialControls plus = controls, minus = controls;
+    Eigen::VectorXd qp = q, qm = q;
+    qp(i) += h;
+    qm(i) -= h;
+    plus.setParameters(qp);
+    minus.setParameters(qm);
+    fd.col(i) = (integrateTo(kinematics, plain, start, plus, duration) -
+                 integrateTo(kinematics, plain, start, minus, duration)) / (2 * h);
+  }
+  return fd;
+}
+
+TEST(RoverIntegrator, SensitivitiesMatchFiniteDifferences) {
+  const ElevationMap map = generated(terrain::TerrainKind::kHills);
+  const TerrainSurface surface(map, Interpolation::kBicubic);
+  const PointAttitudeModel point(surface);
+  RockerBogieSolverOptions precise;
+  precise.tolerance = 1e-12;
+  const RockerBogieAttitudeModel rocker_bogie(surface, RockerBogieGeometry{}, precise);
+  const PolynomialControls controls({0.5, 0.05, -0.002}, {0.2, -0.03, 0.001});
+  const Eigen::Vector3d start(8.0, 18.0, 0.3);
+  for (const TerrainFollowingModel* model :
+       std::initializer_list<const TerrainFollowingModel*>{&point, &rocker_bogie}) {
+    const RoverKinematics kinematics(*model);
+    for (IntegratorOptions options : {cvodes(1e-11), fixedStep(IntegrationMethod::kRk4, 0.01),
+                                      fixedStep(IntegrationMethod::kEuler, 0.01)}) {
+      options.sensitivities = true;
+      RoverIntegrator integrator(kinematics, options);
+      IntegrationResult result;
+      integrator.integrate(start, controls, 6.0, {}, result);
+      ASSERT_EQ(result.status, IntegrationStatus::kOk) << result.message;
+      const Eigen::MatrixXd fd = finiteDifferenceSensitivity(kinematics, options, start, controls, 6.0, 1e-5);
+      const double relative = (result.sensitivity - fd).norm() / fd.norm();
+      EXPECT_LT(relative, 1e-5) << model->name() << " " << integrationMethodName(options.method)
+                                << "\nsensitivity\n" << result.sensitivity << "\nfd\n" << fd;
+    }
+  }
+}
+
+TEST(RoverIntegrator, SamplesAtRequestedTimes) {
+  const ElevationMap map = generated(terrain::TerrainKind::kHills);
+  const TerrainSurface surface(map, Interpolation::kBicubic);
+  const PointAttitudeModel model(surface);
+  const RoverKinematics kinematics(model);
+  const PolynomialControls controls({0.8}, {0.1});
+  for (const IntegratorOptions& options : {cvodes(1e-10), fixedStep(IntegrationMethod::kRk4, 0.01)}) {
+    RoverIntegrator integrator(kinematics, options);
+    IntegrationResult result;
+    const std::vector<double> times = uniformSampleTimes(5.0, 0.25);
+    integrator.integrate({8.0, 18.0, 0.0}, controls, 5.0, times, result);
+    ASSERT_EQ(result.status, IntegrationStatus::kOk);
+    ASSERT_EQ(result.samples.samples.size(), 21u);
+    EXPECT_DOUBLE_EQ(result.samples.samples.back().t, 5.0);
+    EXPECT_NEAR(result.samples.samples.back().x, result.final_state.x(), 1e-12);
+    EXPECT_DOUBLE_EQ(result.samples.samples[0].x, 8.0);
+    EXPECT_NEAR(result.samples.samples[4].curvature, 0.1 / 0.8, 1e-12);
+    EXPECT_TRUE(std::isfinite(result.samples.samples[7].pitch));
+  }
+}
+
+TEST(RoverIntegrator, FailuresAreStatusesWithReasons) {
+  const ElevationMap map = generated(terrain::TerrainKind::kHills, 64);
+  const TerrainSurface surface(map, Interpolation::kBicubic);
+  const PointAttitudeModel model(surface);
+  const RoverKinematics kinematics(model);
+  const PolynomialControls west({1.0}, {0.0});
+  for (const IntegratorOptions& options : {cvodes(1e-8), fixedStep(IntegrationMethod::kRk4, 0.01),
+                                           fixedStep(IntegrationMethod::kEuler, 0.01)}) {
+    RoverIntegrator integrator(kinematics, options);
+    IntegrationResult result;
+    integrator.integrate({2.0, 8.0, M_PI}, west, 10.0, {}, result);  // drives off the west edge
+    EXPECT_EQ(result.status, IntegrationStatus::kNoTerrain) << integrationMethodName(options.method);
+    EXPECT_GT(result.t_reached, 1.5);
+    EXPECT_LT(result.t_reached, 2.1);
+    EXPECT_GT(result.final_state.x(), -0.02);  // the last accepted step: at most one step out
+    EXPECT_LT(result.final_state.x(), 0.5);
+    integrator.integrate({2.0, 8.0, 0.0}, west, -1.0, {}, result);
+    EXPECT_EQ(result.status, IntegrationStatus::kInvalidInput);
+    integrator.integrate({2.0, 8.0, 0.0}, west, 1.0, {0.5, 0.2}, result);
+    EXPECT_EQ(result.status, IntegrationStatus::kInvalidInput);
+  }
+  IntegratorOptions starved = cvodes(1e-10);
+  starved.max_steps = 3;
+  RoverIntegrator integrator(kinematics, starved);
+  IntegrationResult result;
+  integrator.integrate({2.0, 8.0, 0.0}, west, 5.0, {}, result);
+  EXPECT_EQ(result.status, IntegrationStatus::kSolverFailure);
+  EXPECT_THAT(result.message, ::testing::HasSubstr("CV_TOO_MUCH_WORK"));
+  IntegratorOptions bad;
+  bad.step = 0.0;
+  EXPECT_THROW(RoverIntegrator(kinematics, bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace terratraj::models
