@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "terratraj/apps/lut_commands.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/terrain_commands.hpp"
 #include "terratraj/terrain/input_error.hpp"
@@ -51,6 +52,18 @@ std::string kindsHelp() {
          << terrain::terrainKindDescription(*terrain::parseTerrainKind(name)) << '\n';
   }
   return text.str();
+}
+
+void addBinningOptions(CLI::App& command, TableBinning& binning) {
+  command.add_option("--kind", binning.kind, "pitch | roll_curvature")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"pitch", "roll_curvature"}));
+  command.add_option("--pitch-edges", binning.pitch_edges,
+                     "pitch bin edges [rad]: e0,e1,...,en or lo:hi:bins (default -0.4:0.4:16)");
+  command.add_option("--roll-edges", binning.roll_edges,
+                     "roll bin edges [rad] (default -0.4:0.4:16)");
+  command.add_option("--curvature-edges", binning.curvature_edges,
+                     "curvature bin edges [1/m] (default -1:1:20)");
 }
 
 void addGeneratorOptions(CLI::App& command, terrain::GeneratorOptions& generator) {
@@ -109,6 +122,59 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   check_command->add_option("PROBLEM", check.problem, "problem YAML")->required();
   check_command->add_flag("--json", json_flag, "print one JSON object");
 
+  CLI::App* lut_command =
+      app.add_subcommand("lut", "Kinodynamic look-up tables (speed limits by pitch, roll x curvature).");
+  lut_command->require_subcommand(1);
+
+  LutBuildOptions lut_build;
+  CLI::App* lut_build_command = lut_command->add_subcommand(
+      "build", "Data-driven table from a driving log: each bin holds the mean of the top 1 % of "
+               "its speeds; bins without data hold 0.");
+  lut_build_command->add_option("--log", lut_build.log, "driving log (trajectory CSV with roll, "
+                                "pitch, v and curvature or omega)")->required();
+  lut_build_command->add_option("--out", lut_build.out, "table JSON to write")->required();
+  addBinningOptions(*lut_build_command, lut_build.binning);
+  lut_build_command->add_option("--top-fraction", lut_build.data.top_fraction,
+                                "fraction of each bin's fastest speeds averaged")->capture_default_str();
+  lut_build_command->add_flag("--fill", lut_build.data.fill_empty,
+                              "fill empty bins between filled ones by linear interpolation");
+  lut_build_command->add_flag("--json", json_flag, "print one JSON object");
+
+  LutCheckOptions lut_check;
+  CLI::App* lut_check_command = lut_command->add_subcommand(
+      "check", "Fraction of a trajectory's states faster than the tables allow.");
+  lut_check_command->add_option("TRAJECTORY", lut_check.trajectory, "trajectory CSV")->required();
+  lut_check_command->add_option("--table", lut_check.tables,
+                                "table JSON (repeat for a pitch and a roll_curvature table)")
+      ->required();
+  lut_check_command->add_option("--tolerance", lut_check.tolerance,
+                                "speed above v_max tolerated [m/s]")->capture_default_str();
+  lut_check_command->add_flag("--json", json_flag, "print one JSON object");
+
+  LutPhysicsOptions lut_physics;
+  CLI::App* lut_physics_command = lut_command->add_subcommand(
+      "physics", "Physics-derived table (003_... appendix I: tip-over in turns, braking distance).");
+  lut_physics_command->add_option("--out", lut_physics.out, "table JSON to write")->required();
+  addBinningOptions(*lut_physics_command, lut_physics.binning);
+  models::PhysicsTableParameters& p = lut_physics.parameters;
+  lut_physics_command->add_option("--half-track", p.half_track, "[m]")->capture_default_str();
+  lut_physics_command->add_option("--cog-height", p.cog_height, "[m]")->capture_default_str();
+  lut_physics_command->add_option("--friction", p.friction, "friction coefficient")->capture_default_str();
+  lut_physics_command->add_option("--vehicle-length", p.vehicle_length,
+                                  "[m] (braking distance = 2 lengths)")->capture_default_str();
+  lut_physics_command->add_option("--speed-cap", p.speed_cap, "[m/s]")->capture_default_str();
+  lut_physics_command->add_flag("--json", json_flag, "print one JSON object");
+
+  LutSimulateOptions lut_simulate;
+  CLI::App* lut_simulate_command = lut_command->add_subcommand(
+      "simulate-log", "Simulated expert driving log (a driver who drives fast but avoids hard "
+                      "turns with the roll against them) on generated hills.");
+  lut_simulate_command->add_option("--out", lut_simulate.out, "trajectory CSV to write")->required();
+  lut_simulate_command->add_option("--seed", lut_simulate.driver.seed)->capture_default_str();
+  lut_simulate_command->add_option("--duration", lut_simulate.driver.duration, "[s]")
+      ->capture_default_str();
+  lut_simulate_command->add_flag("--json", json_flag, "print one JSON object");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -124,6 +190,10 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       return runTerrainGenerate(generate, context);
     }
     if (*check_command) return runCheck(check, context);
+    if (*lut_build_command) return runLutBuild(lut_build, context);
+    if (*lut_check_command) return runLutCheck(lut_check, context);
+    if (*lut_physics_command) return runLutPhysics(lut_physics, context);
+    if (*lut_simulate_command) return runLutSimulateLog(lut_simulate, context);
   } catch (const InputError& e) {
     return reportError(e.what(), kExitBadInput, context);
   } catch (const std::bad_alloc&) {

@@ -185,5 +185,74 @@ TEST_F(CliTest, CheckOnARealDemInWorldCoordinates) {
   EXPECT_NEAR(json["problem"]["start"]["y"].get<double>(), 130.0, 1e-6);
 }
 
+TEST_F(CliTest, LutBuildAndCheckAgreeWithAHandComputation) {
+  // A log by hand: pitch 0.1 (bin [0, 0.25)) at speeds 1..200, pitch -0.3 (bin [-0.5, -0.25))
+  // at speeds 3 and 4; curvature from omega / v.
+  std::ostringstream log;
+  log << "t,x,y,roll,pitch,v,omega\n";
+  for (int i = 1; i <= 200; ++i) log << i << ",0,0,0.0,0.1," << i << "," << 0.1 * i << "\n";
+  log << "201,0,0,0.0,-0.3,3,0\n202,0,0,0.0,-0.3,4,0\n";
+  write("drive.csv", log.str());
+  const CliResult built = run({"lut", "build", "--log", path("drive.csv"), "--out", path("pitch.json"),
+                               "--pitch-edges", "-0.5,-0.25,0,0.25,0.5", "--json"});
+  ASSERT_EQ(built.status, kExitSuccess) << built.err;
+  const nlohmann::json report = nlohmann::json::parse(built.out);
+  EXPECT_EQ(report["samples"], 202);
+  // Bin [0, 0.25): top ceil(0.01 * 200) = 2 speeds, (200 + 199) / 2 = 199.5. Bin [-0.5, -0.25):
+  // top ceil(0.02) = 1 speed, 4. The other two bins are empty: 0.
+  EXPECT_EQ(report["table"]["v_max"], (std::vector<double>{4.0, 0.0, 199.5, 0.0}));
+  std::ifstream written(path("pitch.json"));
+  EXPECT_EQ(nlohmann::json::parse(written), report["table"]);
+
+  // A trajectory: 4 states, 1 above its bin's limit (pitch 0.1, v 250 > 199.5), 1 in an empty
+  // bin (pitch 0.3, v 1 > 0): 50 %.
+  write("traj.csv", "t,x,y,roll,pitch,v,curvature\n0,0,0,0,0.1,100,0\n1,1,0,0,0.1,250,0\n"
+                    "2,2,0,0,-0.3,4,0\n3,3,0,0,0.3,1,0\n");
+  const CliResult checked = run({"lut", "check", path("traj.csv"), "--table", path("pitch.json"), "--json"});
+  ASSERT_EQ(checked.status, kExitSuccess) << checked.err;
+  const nlohmann::json check = nlohmann::json::parse(checked.out);
+  EXPECT_EQ(check["states"], 4);
+  EXPECT_DOUBLE_EQ(check["pitch_violation_fraction"].get<double>(), 0.5);
+  EXPECT_TRUE(check["roll_curvature_violation_fraction"].is_null());
+  EXPECT_DOUBLE_EQ(check["combined_violation_fraction"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(check["max_excess_mps"].get<double>(), 50.5);
+}
+
+TEST_F(CliTest, LutCommandsRejectBadInput) {
+  write("no_roll.csv", "t,x,y,pitch,v,curvature\n0,0,0,0,1,0\n");
+  write("no_xy.csv", "t,roll,pitch,v,curvature\n0,0,0,1,0\n");
+  EXPECT_THAT(run({"lut", "build", "--log", path("no_xy.csv"), "--out", path("t.json")}).err,
+              HasSubstr("must name the columns x and y"));
+  const CliResult missing = run({"lut", "build", "--log", path("no_roll.csv"), "--out", path("t.json")});
+  EXPECT_EQ(missing.status, kExitBadInput);
+  EXPECT_THAT(missing.err, HasSubstr("needs a 'roll' column"));
+  write("log.csv", "t,x,y,roll,pitch,v,curvature\n0,0,0,0,0,1,0\n");
+  const CliResult edges = run({"lut", "build", "--log", path("log.csv"), "--out", path("t.json"),
+                               "--pitch-edges", "0.2,0.1"});
+  EXPECT_EQ(edges.status, kExitBadInput);
+  EXPECT_THAT(edges.err, HasSubstr("--pitch-edges: edges must increase strictly"));
+  EXPECT_EQ(run({"lut", "build", "--log", path("log.csv"), "--out", path("t.json"), "--kind", "yaw"}).status,
+            kExitBadInput);
+  EXPECT_EQ(run({"lut", "build", "--log", path("log.csv"), "--out", path("t.json"), "--pitch-edges",
+                 "0:1:x"}).status, kExitBadInput);
+  write("table.json", R"({"kind": "pitch", "pitch_edges_rad": [0, 1], "v_max": [1, 2]})");
+  const CliResult bad_table = run({"lut", "check", path("log.csv"), "--table", path("table.json")});
+  EXPECT_EQ(bad_table.status, kExitBadInput);
+  EXPECT_THAT(bad_table.err, HasSubstr("table.json"));
+  EXPECT_EQ(run({"lut", "check", path("log.csv")}).status, kExitBadInput);  // --table required
+}
+
+TEST_F(CliTest, LutPhysicsAndSimulatedLog) {
+  const CliResult physics = run({"lut", "physics", "--out", path("rc.json"), "--kind", "roll_curvature", "--json"});
+  ASSERT_EQ(physics.status, kExitSuccess) << physics.err;
+  EXPECT_EQ(nlohmann::json::parse(physics.out)["table"]["v_max"].size(), 16u);
+  const CliResult simulated = run({"lut", "simulate-log", "--out", path("drive.csv"), "--duration", "60", "--json"});
+  ASSERT_EQ(simulated.status, kExitSuccess) << simulated.err;
+  EXPECT_EQ(nlohmann::json::parse(simulated.out)["samples"], 601);
+  const CliResult built = run({"lut", "build", "--log", path("drive.csv"), "--out", path("p.json")});
+  EXPECT_EQ(built.status, kExitSuccess) << built.err;
+  EXPECT_THAT(built.out, HasSubstr("v_max [m/s]"));
+}
+
 }  // namespace
 }  // namespace terratraj::apps
