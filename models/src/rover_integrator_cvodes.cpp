@@ -115,7 +115,8 @@ class RoverIntegrator::CvodesSession {
               CV_SUCCESS &&
           CVodeSensSStolerances(memory_, options.relative_tolerance, abs_tolerances.data()) ==
               CV_SUCCESS &&
-          CVodeSetSensErrCon(memory_, SUNTRUE) == CV_SUCCESS;
+          CVodeSetSensErrCon(memory_, options.sensitivity_error_control ? SUNTRUE : SUNFALSE) ==
+              CV_SUCCESS;
     if (!ok_) return;
     sensitivity_solver_ = SUNNonlinSol_FixedPointSens(parameter_count_ + 1, y_, 0, context_);
     ok_ = sensitivity_solver_ != nullptr &&

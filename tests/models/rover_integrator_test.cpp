@@ -164,7 +164,9 @@ TEST(RoverIntegrator, SensitivitiesMatchFiniteDifferences) {
   for (const TerrainFollowingModel* model :
        std::initializer_list<const TerrainFollowingModel*>{&point, &rocker_bogie}) {
     const RoverKinematics kinematics(*model);
-    for (IntegratorOptions options : {cvodes(1e-11), fixedStep(IntegrationMethod::kRk4, 0.01),
+    IntegratorOptions controlled = cvodes(1e-11);
+    controlled.sensitivity_error_control = true;
+    for (IntegratorOptions options : {cvodes(1e-11), controlled, fixedStep(IntegrationMethod::kRk4, 0.01),
                                       fixedStep(IntegrationMethod::kEuler, 0.01)}) {
       options.sensitivities = true;
       RoverIntegrator integrator(kinematics, options);
@@ -174,6 +176,7 @@ TEST(RoverIntegrator, SensitivitiesMatchFiniteDifferences) {
       const Eigen::MatrixXd fd = finiteDifferenceSensitivity(kinematics, options, start, controls, 6.0, 1e-5);
       const double relative = (result.sensitivity - fd).norm() / fd.norm();
       EXPECT_LT(relative, 1e-5) << model->name() << " " << integrationMethodName(options.method)
+                                << (options.sensitivity_error_control ? " (error control)" : "")
                                 << "\nsensitivity\n" << result.sensitivity << "\nfd\n" << fd;
     }
   }

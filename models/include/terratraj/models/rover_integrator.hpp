@@ -5,7 +5,8 @@
 // Methods:
 //  - kCvodes: SUNDIALS CVODES (Adams-Moulton, fixed-point corrector: the kinematics are not
 //    stiff), relative / absolute tolerances, forward sensitivities (CVodeSensInit, simultaneous
-//    corrector, error control on the sensitivities), dense output at the sample times. The
+//    corrector, optional error control on the sensitivities), dense output at the sample
+//    times. The
 //    CVODES memory is created once per integrator and re-initialised for each call.
 //  - kRk4: classical fixed-step Runge-Kutta; sensitivities are the exact derivatives of the
 //    discrete map (forward mode through the four stages).
@@ -41,6 +42,10 @@ struct IntegratorOptions {
   double absolute_tolerance = 1e-10;  ///< CVODES [m, rad], > 0
   long max_steps = 1000000;           ///< CVODES internal steps per call, > 0
   bool sensitivities = false;         ///< also integrate d state / d q
+  /// CVODES: include the sensitivities in the local error test. Off by default: the steps
+  /// chosen for the state already give sensitivities that match finite differences to 1e-5
+  /// (tests), and error control costs 6-20x more steps (docs/benchmarks.md).
+  bool sensitivity_error_control = false;
 };
 
 /// How an integration ended.
