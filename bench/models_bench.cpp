@@ -95,12 +95,13 @@ BENCHMARK(BM_AttitudeRockerBogieCold);
 BENCHMARK(BM_AttitudeRockerBogieWarm);
 
 // A 10 s trajectory (v = 0.8 + 0.02 t, omega = 0.15 - 0.02 t: cubic controls, 6 parameters).
-void integrateTenSeconds(benchmark::State& state, models::IntegrationMethod method, bool sensitivities,
-                         bool rocker_bogie, bool error_control = false) {
+void integrateTenSeconds(benchmark::State& state, models::IntegrationMethod method,
+                         bool sensitivities, bool rocker_bogie, bool error_control = false) {
   const models::PointAttitudeModel point(surface());
   const models::RockerBogieAttitudeModel rb(surface());
-  const models::RoverKinematics kinematics(rocker_bogie ? static_cast<const models::TerrainFollowingModel&>(rb)
-                                                        : static_cast<const models::TerrainFollowingModel&>(point));
+  const models::RoverKinematics kinematics(
+      rocker_bogie ? static_cast<const models::TerrainFollowingModel&>(rb)
+                   : static_cast<const models::TerrainFollowingModel&>(point));
   models::IntegratorOptions options;
   options.method = method;
   options.step = 0.01;
@@ -111,20 +112,39 @@ void integrateTenSeconds(benchmark::State& state, models::IntegrationMethod meth
   models::IntegrationResult result;
   for (auto _ : state) {
     integrator.integrate({10.0, 30.0, 0.2}, controls, 10.0, {}, result);
-    if (result.status != models::IntegrationStatus::kOk) state.SkipWithError(result.message.c_str());
+    if (result.status != models::IntegrationStatus::kOk)
+      state.SkipWithError(result.message.c_str());
   }
   state.counters["rhs_evals"] = static_cast<double>(result.rhs_evaluations);
 }
 
-void BM_IntegrateCvodes(benchmark::State& s) { integrateTenSeconds(s, models::IntegrationMethod::kCvodes, false, false); }
-void BM_IntegrateCvodesSens(benchmark::State& s) { integrateTenSeconds(s, models::IntegrationMethod::kCvodes, true, false); }
-void BM_IntegrateCvodesSensErrCon(benchmark::State& s) { integrateTenSeconds(s, models::IntegrationMethod::kCvodes, true, false, true); }
-void BM_IntegrateRk4(benchmark::State& s) { integrateTenSeconds(s, models::IntegrationMethod::kRk4, false, false); }
-void BM_IntegrateRk4Sens(benchmark::State& s) { integrateTenSeconds(s, models::IntegrationMethod::kRk4, true, false); }
-void BM_IntegrateCvodesRockerBogie(benchmark::State& s) { integrateTenSeconds(s, models::IntegrationMethod::kCvodes, false, true); }
-void BM_IntegrateCvodesSensRockerBogie(benchmark::State& s) { integrateTenSeconds(s, models::IntegrationMethod::kCvodes, true, true); }
-void BM_IntegrateRk4RockerBogie(benchmark::State& s) { integrateTenSeconds(s, models::IntegrationMethod::kRk4, false, true); }
-void BM_IntegrateRk4SensRockerBogie(benchmark::State& s) { integrateTenSeconds(s, models::IntegrationMethod::kRk4, true, true); }
+void BM_IntegrateCvodes(benchmark::State& s) {
+  integrateTenSeconds(s, models::IntegrationMethod::kCvodes, false, false);
+}
+void BM_IntegrateCvodesSens(benchmark::State& s) {
+  integrateTenSeconds(s, models::IntegrationMethod::kCvodes, true, false);
+}
+void BM_IntegrateCvodesSensErrCon(benchmark::State& s) {
+  integrateTenSeconds(s, models::IntegrationMethod::kCvodes, true, false, true);
+}
+void BM_IntegrateRk4(benchmark::State& s) {
+  integrateTenSeconds(s, models::IntegrationMethod::kRk4, false, false);
+}
+void BM_IntegrateRk4Sens(benchmark::State& s) {
+  integrateTenSeconds(s, models::IntegrationMethod::kRk4, true, false);
+}
+void BM_IntegrateCvodesRockerBogie(benchmark::State& s) {
+  integrateTenSeconds(s, models::IntegrationMethod::kCvodes, false, true);
+}
+void BM_IntegrateCvodesSensRockerBogie(benchmark::State& s) {
+  integrateTenSeconds(s, models::IntegrationMethod::kCvodes, true, true);
+}
+void BM_IntegrateRk4RockerBogie(benchmark::State& s) {
+  integrateTenSeconds(s, models::IntegrationMethod::kRk4, false, true);
+}
+void BM_IntegrateRk4SensRockerBogie(benchmark::State& s) {
+  integrateTenSeconds(s, models::IntegrationMethod::kRk4, true, true);
+}
 BENCHMARK(BM_IntegrateCvodes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_IntegrateCvodesSens)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_IntegrateCvodesSensErrCon)->Unit(benchmark::kMicrosecond);
@@ -144,8 +164,8 @@ void BM_TableLookupPitch(benchmark::State& state) {
   }
 }
 void BM_TableLookupRollCurvature(benchmark::State& state) {
-  const models::RollCurvatureSpeedTable table =
-      models::physicsRollCurvatureTable(models::defaultRollEdges(), models::defaultCurvatureEdges(), {});
+  const models::RollCurvatureSpeedTable table = models::physicsRollCurvatureTable(
+      models::defaultRollEdges(), models::defaultCurvatureEdges(), {});
   double r = -0.5;
   for (auto _ : state) {
     benchmark::DoNotOptimize(table.lookup(r, 2.0 * r));
@@ -153,8 +173,8 @@ void BM_TableLookupRollCurvature(benchmark::State& state) {
   }
 }
 void BM_TableSmoothLookupRollCurvature(benchmark::State& state) {
-  const models::RollCurvatureSpeedTable table =
-      models::physicsRollCurvatureTable(models::defaultRollEdges(), models::defaultCurvatureEdges(), {});
+  const models::RollCurvatureSpeedTable table = models::physicsRollCurvatureTable(
+      models::defaultRollEdges(), models::defaultCurvatureEdges(), {});
   double r = -0.5, d_roll = 0.0, d_curvature = 0.0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(table.smoothLookup(r, 2.0 * r, &d_roll, &d_curvature));

@@ -53,9 +53,15 @@ void sampleHeightAndGradient(benchmark::State& state, Interpolation method) {
   state.SetItemsProcessed(state.iterations());
 }
 
-void BM_SampleNearest(benchmark::State& state) { sampleHeightAndGradient(state, Interpolation::kNearest); }
-void BM_SampleBilinear(benchmark::State& state) { sampleHeightAndGradient(state, Interpolation::kBilinear); }
-void BM_SampleBicubic(benchmark::State& state) { sampleHeightAndGradient(state, Interpolation::kBicubic); }
+void BM_SampleNearest(benchmark::State& state) {
+  sampleHeightAndGradient(state, Interpolation::kNearest);
+}
+void BM_SampleBilinear(benchmark::State& state) {
+  sampleHeightAndGradient(state, Interpolation::kBilinear);
+}
+void BM_SampleBicubic(benchmark::State& state) {
+  sampleHeightAndGradient(state, Interpolation::kBicubic);
+}
 BENCHMARK(BM_SampleNearest);
 BENCHMARK(BM_SampleBilinear);
 BENCHMARK(BM_SampleBicubic);

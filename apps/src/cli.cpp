@@ -1,7 +1,7 @@
 #include "terratraj/apps/cli.hpp"
 
-#include <CLI/CLI.hpp>
 #include <spdlog/sinks/ostream_sink.h>
+#include <CLI/CLI.hpp>
 
 #include <cstring>
 #include <new>
@@ -86,8 +86,9 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   DemoOptions demo;
   CLI::App* demo_command = app.add_subcommand(
-      "demo", "The main job on built-in defaults, no input files: generates a terrain and writes "
-              "it (GeoTIFF) and its summary (JSON) to the output folder.");
+      "demo",
+      "The main job on built-in defaults, no input files: generates a terrain and writes "
+      "it (GeoTIFF) and its summary (JSON) to the output folder.");
   demo_command->add_option("--out-dir", demo.out_dir, "output folder")->capture_default_str();
   addGeneratorOptions(*demo_command, demo.generator);
   demo_command->add_flag("--json", json_flag, "print the summary as one JSON object");
@@ -117,25 +118,32 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   CheckOptions check;
   CLI::App* check_command = app.add_subcommand(
-      "check", "Read a problem file and its terrain, validate every key and the start and goal "
-               "poses, and print what was understood.");
+      "check",
+      "Read a problem file and its terrain, validate every key and the start and goal "
+      "poses, and print what was understood.");
   check_command->add_option("PROBLEM", check.problem, "problem YAML")->required();
   check_command->add_flag("--json", json_flag, "print one JSON object");
 
-  CLI::App* lut_command =
-      app.add_subcommand("lut", "Kinodynamic look-up tables (speed limits by pitch, roll x curvature).");
+  CLI::App* lut_command = app.add_subcommand(
+      "lut", "Kinodynamic look-up tables (speed limits by pitch, roll x curvature).");
   lut_command->require_subcommand(1);
 
   LutBuildOptions lut_build;
   CLI::App* lut_build_command = lut_command->add_subcommand(
-      "build", "Data-driven table from a driving log: each bin holds the mean of the top 1 % of "
-               "its speeds; bins without data hold 0.");
-  lut_build_command->add_option("--log", lut_build.log, "driving log (trajectory CSV with roll, "
-                                "pitch, v and curvature or omega)")->required();
+      "build",
+      "Data-driven table from a driving log: each bin holds the mean of the top 1 % of "
+      "its speeds; bins without data hold 0.");
+  lut_build_command
+      ->add_option("--log", lut_build.log,
+                   "driving log (trajectory CSV with roll, "
+                   "pitch, v and curvature or omega)")
+      ->required();
   lut_build_command->add_option("--out", lut_build.out, "table JSON to write")->required();
   addBinningOptions(*lut_build_command, lut_build.binning);
-  lut_build_command->add_option("--top-fraction", lut_build.data.top_fraction,
-                                "fraction of each bin's fastest speeds averaged")->capture_default_str();
+  lut_build_command
+      ->add_option("--top-fraction", lut_build.data.top_fraction,
+                   "fraction of each bin's fastest speeds averaged")
+      ->capture_default_str();
   lut_build_command->add_flag("--fill", lut_build.data.fill_empty,
                               "fill empty bins between filled ones by linear interpolation");
   lut_build_command->add_flag("--json", json_flag, "print one JSON object");
@@ -144,32 +152,39 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   CLI::App* lut_check_command = lut_command->add_subcommand(
       "check", "Fraction of a trajectory's states faster than the tables allow.");
   lut_check_command->add_option("TRAJECTORY", lut_check.trajectory, "trajectory CSV")->required();
-  lut_check_command->add_option("--table", lut_check.tables,
-                                "table JSON (repeat for a pitch and a roll_curvature table)")
+  lut_check_command
+      ->add_option("--table", lut_check.tables,
+                   "table JSON (repeat for a pitch and a roll_curvature table)")
       ->required();
-  lut_check_command->add_option("--tolerance", lut_check.tolerance,
-                                "speed above v_max tolerated [m/s]")->capture_default_str();
+  lut_check_command
+      ->add_option("--tolerance", lut_check.tolerance, "speed above v_max tolerated [m/s]")
+      ->capture_default_str();
   lut_check_command->add_flag("--json", json_flag, "print one JSON object");
 
   LutPhysicsOptions lut_physics;
   CLI::App* lut_physics_command = lut_command->add_subcommand(
-      "physics", "Physics-derived table (003_... appendix I: tip-over in turns, braking distance).");
+      "physics",
+      "Physics-derived table (003_... appendix I: tip-over in turns, braking distance).");
   lut_physics_command->add_option("--out", lut_physics.out, "table JSON to write")->required();
   addBinningOptions(*lut_physics_command, lut_physics.binning);
   models::PhysicsTableParameters& p = lut_physics.parameters;
   lut_physics_command->add_option("--half-track", p.half_track, "[m]")->capture_default_str();
   lut_physics_command->add_option("--cog-height", p.cog_height, "[m]")->capture_default_str();
-  lut_physics_command->add_option("--friction", p.friction, "friction coefficient")->capture_default_str();
-  lut_physics_command->add_option("--vehicle-length", p.vehicle_length,
-                                  "[m] (braking distance = 2 lengths)")->capture_default_str();
+  lut_physics_command->add_option("--friction", p.friction, "friction coefficient")
+      ->capture_default_str();
+  lut_physics_command
+      ->add_option("--vehicle-length", p.vehicle_length, "[m] (braking distance = 2 lengths)")
+      ->capture_default_str();
   lut_physics_command->add_option("--speed-cap", p.speed_cap, "[m/s]")->capture_default_str();
   lut_physics_command->add_flag("--json", json_flag, "print one JSON object");
 
   LutSimulateOptions lut_simulate;
   CLI::App* lut_simulate_command = lut_command->add_subcommand(
-      "simulate-log", "Simulated expert driving log (a driver who drives fast but avoids hard "
-                      "turns with the roll against them) on generated hills.");
-  lut_simulate_command->add_option("--out", lut_simulate.out, "trajectory CSV to write")->required();
+      "simulate-log",
+      "Simulated expert driving log (a driver who drives fast but avoids hard "
+      "turns with the roll against them) on generated hills.");
+  lut_simulate_command->add_option("--out", lut_simulate.out, "trajectory CSV to write")
+      ->required();
   lut_simulate_command->add_option("--seed", lut_simulate.driver.seed)->capture_default_str();
   lut_simulate_command->add_option("--duration", lut_simulate.driver.duration, "[s]")
       ->capture_default_str();

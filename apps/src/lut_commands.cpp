@@ -62,7 +62,8 @@ std::string rollCurvatureTableText(const models::RollCurvatureSpeedTable& table)
   text << '\n';
   for (int i = 0; i < table.rollEdges().binCount(); ++i) {
     text << "  " << std::setw(7) << table.rollEdges().centre(i);
-    for (int j = 0; j < table.curvatureEdges().binCount(); ++j) text << std::setw(7) << table.vMax()(i, j);
+    for (int j = 0; j < table.curvatureEdges().binCount(); ++j)
+      text << std::setw(7) << table.vMax()(i, j);
     text << '\n';
   }
   return text.str();
@@ -76,15 +77,16 @@ int writeAndReport(const TableBinning& binning, const std::filesystem::path& out
   requireKind(binning.kind);
   std::string text;
   if (binning.kind == "pitch") {
-    const models::PitchSpeedTable table =
-        make_pitch(parseBinEdges(binning.pitch_edges, models::defaultPitchEdges(), "--pitch-edges"));
+    const models::PitchSpeedTable table = make_pitch(
+        parseBinEdges(binning.pitch_edges, models::defaultPitchEdges(), "--pitch-edges"));
     models::writeTable(table, out);
     report["table"] = nlohmann::json::parse(models::tableJson(table));
     text = pitchTableText(table);
   } else {
     const models::RollCurvatureSpeedTable table = make_roll_curvature(
         parseBinEdges(binning.roll_edges, models::defaultRollEdges(), "--roll-edges"),
-        parseBinEdges(binning.curvature_edges, models::defaultCurvatureEdges(), "--curvature-edges"));
+        parseBinEdges(binning.curvature_edges, models::defaultCurvatureEdges(),
+                      "--curvature-edges"));
     models::writeTable(table, out);
     report["table"] = nlohmann::json::parse(models::tableJson(table));
     text = rollCurvatureTableText(table);
@@ -129,7 +131,9 @@ int runLutBuild(const LutBuildOptions& options, CommandContext& context) {
                         {"fill_empty", options.data.fill_empty}};
   return writeAndReport(
       options.binning, options.out, report, context,
-      [&](const models::BinEdges& pitch) { return models::dataPitchTable(states, pitch, options.data); },
+      [&](const models::BinEdges& pitch) {
+        return models::dataPitchTable(states, pitch, options.data);
+      },
       [&](const models::BinEdges& roll, const models::BinEdges& curvature) {
         return models::dataRollCurvatureTable(states, roll, curvature, options.data);
       });
@@ -142,9 +146,12 @@ int runLutPhysics(const LutPhysicsOptions& options, CommandContext& context) {
     throw InputError("lut physics: every vehicle parameter must be > 0");
   }
   nlohmann::json report{{"parameters",
-                         {{"gravity", p.gravity}, {"half_track_m", p.half_track},
-                          {"cog_height_m", p.cog_height}, {"friction", p.friction},
-                          {"vehicle_length_m", p.vehicle_length}, {"speed_cap_mps", p.speed_cap}}}};
+                         {{"gravity", p.gravity},
+                          {"half_track_m", p.half_track},
+                          {"cog_height_m", p.cog_height},
+                          {"friction", p.friction},
+                          {"vehicle_length_m", p.vehicle_length},
+                          {"speed_cap_mps", p.speed_cap}}}};
   return writeAndReport(
       options.binning, options.out, report, context,
       [&](const models::BinEdges& pitch) { return models::physicsPitchTable(pitch, p); },
@@ -162,7 +169,8 @@ int runLutCheck(const LutCheckOptions& options, CommandContext& context) {
   for (const std::filesystem::path& file : options.tables) {
     const std::string kind = models::readTableKind(file);
     if ((kind == "pitch" && pitch) || (kind == "roll_curvature" && roll_curvature)) {
-      throw InputError(file.string() + ": a second " + kind + " table (give at most one of each kind)");
+      throw InputError(file.string() + ": a second " + kind +
+                       " table (give at most one of each kind)");
     }
     if (kind == "pitch") {
       pitch = models::readPitchTable(file);
@@ -171,21 +179,23 @@ int runLutCheck(const LutCheckOptions& options, CommandContext& context) {
     }
   }
   const models::Trajectory trajectory = models::readTrajectoryCsv(options.trajectory);
-  const models::DrivingStates states = models::drivingStates(trajectory, options.trajectory.string());
-  const models::ViolationReport report = models::analyseViolations(
-      states, pitch ? &*pitch : nullptr, roll_curvature ? &*roll_curvature : nullptr,
-      options.tolerance);
+  const models::DrivingStates states =
+      models::drivingStates(trajectory, options.trajectory.string());
+  const models::ViolationReport report =
+      models::analyseViolations(states, pitch ? &*pitch : nullptr,
+                                roll_curvature ? &*roll_curvature : nullptr, options.tolerance);
   const auto fraction = [](const std::optional<double>& f) {
     return f ? nlohmann::json(*f) : nlohmann::json(nullptr);
   };
-  nlohmann::json json{{"status", "ok"},
-                      {"trajectory", options.trajectory.string()},
-                      {"states", report.states},
-                      {"pitch_violation_fraction", fraction(report.pitch_fraction)},
-                      {"roll_curvature_violation_fraction", fraction(report.roll_curvature_fraction)},
-                      {"combined_violation_fraction", report.combined_fraction},
-                      {"max_excess_mps", report.max_excess},
-                      {"tolerance_mps", options.tolerance}};
+  nlohmann::json json{
+      {"status", "ok"},
+      {"trajectory", options.trajectory.string()},
+      {"states", report.states},
+      {"pitch_violation_fraction", fraction(report.pitch_fraction)},
+      {"roll_curvature_violation_fraction", fraction(report.roll_curvature_fraction)},
+      {"combined_violation_fraction", report.combined_fraction},
+      {"max_excess_mps", report.max_excess},
+      {"tolerance_mps", options.tolerance}};
   if (context.json) {
     context.out << json.dump(2) << '\n';
     return kExitSuccess;
@@ -193,7 +203,8 @@ int runLutCheck(const LutCheckOptions& options, CommandContext& context) {
   context.out << options.trajectory.string() << ": " << report.states << " states\n"
               << std::fixed << std::setprecision(2);
   if (report.pitch_fraction) {
-    context.out << "  pitch table           " << 100.0 * *report.pitch_fraction << " % of states too fast\n";
+    context.out << "  pitch table           " << 100.0 * *report.pitch_fraction
+                << " % of states too fast\n";
   }
   if (report.roll_curvature_fraction) {
     context.out << "  roll x curvature      " << 100.0 * *report.roll_curvature_fraction
@@ -205,13 +216,17 @@ int runLutCheck(const LutCheckOptions& options, CommandContext& context) {
 }
 
 int runLutSimulateLog(const LutSimulateOptions& options, CommandContext& context) {
-  context.log->info("simulating {} s of driving (seed {})", options.driver.duration, options.driver.seed);
+  context.log->info("simulating {} s of driving (seed {})", options.driver.duration,
+                    options.driver.seed);
   const models::Trajectory log = models::simulateDrivingLog(options.driver);
   models::writeTrajectoryCsv(log, options.out);
   if (context.json) {
-    context.out << nlohmann::json{{"status", "ok"}, {"file", options.out.string()},
-                                  {"samples", log.samples.size()}, {"seed", options.driver.seed},
-                                  {"duration_s", options.driver.duration}}.dump(2)
+    context.out << nlohmann::json{{"status", "ok"},
+                                  {"file", options.out.string()},
+                                  {"samples", log.samples.size()},
+                                  {"seed", options.driver.seed},
+                                  {"duration_s", options.driver.duration}}
+                       .dump(2)
                 << '\n';
   } else {
     context.out << "wrote " << options.out.string() << " (" << log.samples.size() << " samples)\n";

@@ -1,10 +1,14 @@
 #include "terratraj/apps/problem_commands.hpp"
 
 #include <ostream>
+#include <sstream>
 
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/terrain_commands.hpp"
+#include "terratraj/apps/vehicle_factory.hpp"
+#include "terratraj/models/velocity_table.hpp"
+#include "terratraj/terrain/input_error.hpp"
 #include "terratraj/terrain/terrain_source.hpp"
 #include "terratraj/terrain/terrain_statistics.hpp"
 
@@ -12,7 +16,10 @@ namespace terratraj::apps {
 namespace {
 
 nlohmann::json stateJson(const BoundaryState& state) {
-  return {{"x", state.x}, {"y", state.y}, {"heading", state.heading}, {"v", state.v},
+  return {{"x", state.x},
+          {"y", state.y},
+          {"heading", state.heading},
+          {"v", state.v},
           {"omega", state.omega}};
 }
 
@@ -33,12 +40,50 @@ nlohmann::json terrainSourceJson(const terrain::TerrainSource& source) {
   json["cell"] = source.raster.cell ? nlohmann::json(*source.raster.cell) : nlohmann::json(nullptr);
   if (source.generate) {
     const terrain::GeneratorOptions& g = *source.generate;
-    json["generate"] = {{"kind", terrain::terrainKindName(g.kind)}, {"rows", g.rows},
-                        {"cols", g.cols}, {"cell", g.cell}, {"seed", g.seed}};
+    json["generate"] = {{"kind", terrain::terrainKindName(g.kind)},
+                        {"rows", g.rows},
+                        {"cols", g.cols},
+                        {"cell", g.cell},
+                        {"seed", g.seed}};
   } else {
     json["generate"] = nullptr;
   }
   return json;
+}
+
+constexpr double kDegreesPerRadian = 57.29577951308232;
+
+// The vehicle's attitude at a boundary state; InputError when it cannot rest there.
+models::AttitudeResult restingAttitude(const models::TerrainFollowingModel& model,
+                                       const BoundaryState& state, const char* which,
+                                       const ProblemSpec& problem) {
+  models::AttitudeWorkspace workspace;
+  models::AttitudeResult result;
+  const models::AttitudeStatus status =
+      model.compute({state.x, state.y, state.heading}, workspace, result);
+  if (status != models::AttitudeStatus::kOk) {
+    std::ostringstream message;
+    message << problem.source_file.string() << ": " << which << ": the " << model.name()
+            << " vehicle cannot rest on the terrain at (" << state.x << ", " << state.y
+            << ") m, heading " << state.heading << " rad ("
+            << (status == models::AttitudeStatus::kNoTerrain
+                    ? "a wheel is off the map or over no-data cells"
+                    : "no suspension configuration touches the ground")
+            << ")";
+    throw InputError(message.str());
+  }
+  return result;
+}
+
+nlohmann::json attitudeJson(const models::AttitudeResult& result) {
+  return {
+      {"z", result.attitude.z}, {"roll", result.attitude.roll}, {"pitch", result.attitude.pitch}};
+}
+
+// Reads the problem's look-up tables, so that a bad table is reported now.
+void checkTables(const VehicleTables& tables) {
+  if (tables.pitch) models::readPitchTable(*tables.pitch);
+  if (tables.roll_curvature) models::readRollCurvatureTable(*tables.roll_curvature);
 }
 
 }  // namespace
@@ -51,8 +96,12 @@ nlohmann::json problemJson(const ProblemSpec& problem) {
       {"vehicle",
        {{"model", vehicleModelName(problem.vehicle.model)},
         {"limits",
-         {{"v_max", l.v_max}, {"a_max", l.a_max}, {"omega_max", l.omega_max},
-          {"kappa_max", l.kappa_max}, {"sigma_max", l.sigma_max}, {"pitch_max", l.pitch_max},
+         {{"v_max", l.v_max},
+          {"a_max", l.a_max},
+          {"omega_max", l.omega_max},
+          {"kappa_max", l.kappa_max},
+          {"sigma_max", l.sigma_max},
+          {"pitch_max", l.pitch_max},
           {"roll_max", l.roll_max}}},
         {"tables",
          {{"pitch", optionalPath(problem.vehicle.tables.pitch)},
@@ -84,20 +133,32 @@ int runCheck(const CheckOptions& options, CommandContext& context) {
   context.log->info("{}: problem read; loading its terrain", options.problem.string());
   const terrain::ElevationMap map = terrain::loadTerrain(problem.terrain);
   resolvePosesOnTerrain(problem, map);
+  checkTables(problem.vehicle.tables);
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const std::unique_ptr<models::TerrainFollowingModel> vehicle =
+      makeTerrainFollowingModel(problem.vehicle.model, surface);
+  const models::AttitudeResult start = restingAttitude(*vehicle, problem.start, "start", problem);
+  const models::AttitudeResult goal = restingAttitude(*vehicle, problem.goal, "goal", problem);
   const terrain::TerrainStatistics stats = terrain::computeTerrainStatistics(map);
   if (context.json) {
     nlohmann::json json{{"status", "ok"},
                         {"problem", problemJson(problem)},
+                        {"start_attitude", attitudeJson(start)},
+                        {"goal_attitude", attitudeJson(goal)},
                         {"terrain", terrainStatisticsJson(stats)}};
     context.out << json.dump(2) << '\n';
   } else {
     context.out << options.problem.string() << ": ok\n"
                 << "  vehicle    " << vehicleModelName(problem.vehicle.model) << ", v_max "
                 << problem.vehicle.limits.v_max << " m/s\n"
-                << "  start      (" << problem.start.x << ", " << problem.start.y
-                << ") m, heading " << problem.start.heading << " rad (local frame)\n"
-                << "  goal       (" << problem.goal.x << ", " << problem.goal.y
-                << ") m, heading " << problem.goal.heading << " rad (local frame)\n"
+                << "  start      (" << problem.start.x << ", " << problem.start.y << ") m, heading "
+                << problem.start.heading << " rad (local frame); pitch "
+                << start.attitude.pitch * kDegreesPerRadian << " deg, roll "
+                << start.attitude.roll * kDegreesPerRadian << " deg\n"
+                << "  goal       (" << problem.goal.x << ", " << problem.goal.y << ") m, heading "
+                << problem.goal.heading << " rad (local frame); pitch "
+                << goal.attitude.pitch * kDegreesPerRadian << " deg, roll "
+                << goal.attitude.roll * kDegreesPerRadian << " deg\n"
                 << "  cost       " << costKindName(problem.cost.kind) << ", solver "
                 << solverMethodName(problem.solver.method) << ", planner "
                 << plannerKindName(problem.planner.kind) << '\n'

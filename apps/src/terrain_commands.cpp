@@ -28,7 +28,8 @@ void writeJsonFile(const nlohmann::json& json, const std::filesystem::path& path
 void createDirectories(const std::filesystem::path& dir) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
-  if (error) throw InputError(dir.string() + ": cannot create the folder (" + error.message() + ")");
+  if (error)
+    throw InputError(dir.string() + ": cannot create the folder (" + error.message() + ")");
 }
 
 }  // namespace
@@ -48,8 +49,10 @@ nlohmann::json terrainStatisticsJson(const terrain::TerrainStatistics& stats) {
       {"no_data_cells", stats.no_data_cells},
       {"lethal_cells", stats.lethal_cells},
       {"obstacle_clusters", stats.obstacle_clusters},
-      {"height_m", {{"min", stats.min_height}, {"max", stats.max_height}, {"mean", stats.mean_height}}},
-      {"slope_rad", {{"mean", stats.mean_slope}, {"p95", stats.p95_slope}, {"max", stats.max_slope}}},
+      {"height_m",
+       {{"min", stats.min_height}, {"max", stats.max_height}, {"mean", stats.mean_height}}},
+      {"slope_rad",
+       {{"mean", stats.mean_slope}, {"p95", stats.p95_slope}, {"max", stats.max_slope}}},
   };
   return json;
 }
@@ -59,8 +62,8 @@ std::string terrainStatisticsText(const terrain::TerrainStatistics& stats) {
   const Eigen::Vector2d world_max = g.toWorld(Eigen::Vector2d(g.width(), g.height()));
   std::ostringstream text;
   text << std::fixed << std::setprecision(2);
-  text << "  size       " << g.cols << " x " << g.rows << " cells (cols x rows), cell "
-       << g.cell << " m\n";
+  text << "  size       " << g.cols << " x " << g.rows << " cells (cols x rows), cell " << g.cell
+       << " m\n";
   text << "  extent     " << g.width() << " x " << g.height() << " m; world x ["
        << g.world_origin.x() << ", " << world_max.x() << "], y [" << g.world_origin.y() << ", "
        << world_max.y() << "]\n";

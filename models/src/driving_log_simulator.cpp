@@ -13,8 +13,8 @@ namespace terratraj::models {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kSubsteps = 10;          // integration steps per sample
-constexpr double kEdgeMargin = 12.0;   // [m] turn back toward the centre within this
+constexpr int kSubsteps = 10;         // integration steps per sample
+constexpr double kEdgeMargin = 12.0;  // [m] turn back toward the centre within this
 
 class Uniform {
  public:
@@ -28,12 +28,11 @@ class Uniform {
 };
 
 void validate(const DrivingLogOptions& o) {
-  const bool ok = o.duration > 0.0 && o.sample_period > 0.0 && o.terrain_size >= 16 &&
-                  o.terrain_cell > 0.0 && o.speed_cap > 0.0 && o.lateral_acceleration > 0.0 &&
-                  o.acceleration > 0.0 && o.noise >= 0.0 && o.noise < 1.0 &&
-                  o.max_curvature > 0.0 && o.curvature_rate > 0.0 && o.steer_period > 0.0 &&
-                  o.avoid_curvature > 0.0 && o.downhill_slowdown >= 0.0 &&
-                  o.downhill_slowdown < 1.0;
+  const bool ok =
+      o.duration > 0.0 && o.sample_period > 0.0 && o.terrain_size >= 16 && o.terrain_cell > 0.0 &&
+      o.speed_cap > 0.0 && o.lateral_acceleration > 0.0 && o.acceleration > 0.0 && o.noise >= 0.0 &&
+      o.noise < 1.0 && o.max_curvature > 0.0 && o.curvature_rate > 0.0 && o.steer_period > 0.0 &&
+      o.avoid_curvature > 0.0 && o.downhill_slowdown >= 0.0 && o.downhill_slowdown < 1.0;
   if (!ok) throw InputError("driving-log simulator: invalid options");
 }
 
@@ -73,7 +72,8 @@ Trajectory simulateDrivingLog(const DrivingLogOptions& o) {
     const Eigen::Vector2d to_centre = Eigen::Vector2d(0.5 * size, 0.5 * size) - state.head<2>();
     if (state.x() < kEdgeMargin || state.y() < kEdgeMargin || state.x() > size - kEdgeMargin ||
         state.y() > size - kEdgeMargin) {
-      const double bearing = std::remainder(std::atan2(to_centre.y(), to_centre.x()) - state.z(), 2 * kPi);
+      const double bearing =
+          std::remainder(std::atan2(to_centre.y(), to_centre.x()) - state.z(), 2 * kPi);
       target = bearing > 0.0 ? o.max_curvature : -o.max_curvature;
     }
     if (kinematics.rates(state, v, v * curvature, workspace, rates) != AttitudeStatus::kOk) break;
@@ -88,9 +88,9 @@ Trajectory simulateDrivingLog(const DrivingLogOptions& o) {
     };
     const double wanted = avoid(target, roll);
     curvature = avoid(curvature, roll);
-    const double comfort =
-        std::min(o.speed_cap, std::sqrt(o.lateral_acceleration / std::max(std::abs(curvature), 1e-9))) *
-        (1.0 - o.downhill_slowdown * std::max(0.0, -pitch) / 0.4);
+    const double comfort = std::min(o.speed_cap, std::sqrt(o.lateral_acceleration /
+                                                           std::max(std::abs(curvature), 1e-9))) *
+                           (1.0 - o.downhill_slowdown * std::max(0.0, -pitch) / 0.4);
     log.samples.push_back({t, state.x(), state.y(), rates.attitude.attitude.z, state.z(), roll,
                            pitch, v, v * curvature, curvature});
     const double wanted_speed = comfort * speed_factor;

@@ -44,14 +44,7 @@ AttitudeStatus FourWheelAttitudeModel::compute(const PlanarPose& pose,
     dp += wp * dh;
     dq += wq * dh;
   }
-  const PlaneAttitude plane = planeAttitude(p, q);
-  result.attitude = {z, plane.roll, plane.pitch};
-  result.jacobian.row(0) = dz;
-  result.jacobian.row(1) = plane.droll_dp * dp + plane.droll_dq * dq;
-  result.jacobian.row(2) = plane.dpitch_dp * dp;
-  result.suspension.setZero();
-  result.contact_residual = 0.0;
-  result.iterations = 0;
+  setPlaneAttitude(z, dz, p, dp, q, dq, result);
   return AttitudeStatus::kOk;
 }
 

@@ -152,8 +152,9 @@ PitchSpeedTable dataPitchTable(const DrivingStates& states, const BinEdges& pitc
     filled[static_cast<std::size_t>(k)] = 1;
   }
   if (options.fill_empty) {
-    fillLine(n, filled, [&](int k) { return v_max[static_cast<std::size_t>(k)]; },
-             [&](int k, double value) { v_max[static_cast<std::size_t>(k)] = value; });
+    fillLine(
+        n, filled, [&](int k) { return v_max[static_cast<std::size_t>(k)]; },
+        [&](int k, double value) { v_max[static_cast<std::size_t>(k)] = value; });
   }
   return PitchSpeedTable(pitch_edges, std::move(v_max));
 }
@@ -166,7 +167,8 @@ RollCurvatureSpeedTable dataRollCurvatureTable(const DrivingStates& states,
   const int rows = roll_edges.binCount(), cols = curvature_edges.binCount();
   std::vector<std::vector<double>> speeds(static_cast<std::size_t>(rows * cols));
   for (std::size_t i = 0; i < states.speed.size(); ++i) {
-    const int bin = roll_edges.binOf(states.roll[i]) * cols + curvature_edges.binOf(states.curvature[i]);
+    const int bin =
+        roll_edges.binOf(states.roll[i]) * cols + curvature_edges.binOf(states.curvature[i]);
     speeds[static_cast<std::size_t>(bin)].push_back(states.speed[i]);
   }
   Eigen::MatrixXd v_max = Eigen::MatrixXd::Zero(rows, cols);
@@ -184,17 +186,20 @@ RollCurvatureSpeedTable dataRollCurvatureTable(const DrivingStates& states,
     std::vector<char> after_rows = filled;
     for (int r = 0; r < rows; ++r) {
       std::vector<char> line(filled.begin() + r * cols, filled.begin() + (r + 1) * cols);
-      fillLine(cols, line, [&](int c) { return v_max(r, c); },
-               [&](int c, double value) {
-                 v_max(r, c) = value;
-                 after_rows[static_cast<std::size_t>(r * cols + c)] = 1;
-               });
+      fillLine(
+          cols, line, [&](int c) { return v_max(r, c); },
+          [&](int c, double value) {
+            v_max(r, c) = value;
+            after_rows[static_cast<std::size_t>(r * cols + c)] = 1;
+          });
     }
     for (int c = 0; c < cols; ++c) {
       std::vector<char> line(static_cast<std::size_t>(rows));
-      for (int r = 0; r < rows; ++r) line[static_cast<std::size_t>(r)] = after_rows[static_cast<std::size_t>(r * cols + c)];
-      fillLine(rows, line, [&](int r) { return v_max(r, c); },
-               [&](int r, double value) { v_max(r, c) = value; });
+      for (int r = 0; r < rows; ++r)
+        line[static_cast<std::size_t>(r)] = after_rows[static_cast<std::size_t>(r * cols + c)];
+      fillLine(
+          rows, line, [&](int r) { return v_max(r, c); },
+          [&](int r, double value) { v_max(r, c) = value; });
     }
   }
   return RollCurvatureSpeedTable(roll_edges, curvature_edges, std::move(v_max));

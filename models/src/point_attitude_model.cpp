@@ -13,6 +13,19 @@ PlaneAttitude planeAttitude(double p, double q) {
           droll_dr / root};
 }
 
+void setPlaneAttitude(double z, const Eigen::RowVector3d& dz, double p,
+                      const Eigen::RowVector3d& dp, double q, const Eigen::RowVector3d& dq,
+                      AttitudeResult& result) {
+  const PlaneAttitude plane = planeAttitude(p, q);
+  result.attitude = {z, plane.roll, plane.pitch};
+  result.jacobian.row(0) = dz;
+  result.jacobian.row(1) = plane.droll_dp * dp + plane.droll_dq * dq;
+  result.jacobian.row(2) = plane.dpitch_dp * dp;
+  result.suspension.setZero();
+  result.contact_residual = 0.0;
+  result.iterations = 0;
+}
+
 AttitudeStatus PointAttitudeModel::compute(const PlanarPose& pose, AttitudeWorkspace& /*workspace*/,
                                            AttitudeResult& result) const {
   const std::optional<terrain::SurfaceDerivatives> d =
@@ -27,14 +40,7 @@ AttitudeStatus PointAttitudeModel::compute(const PlanarPose& pose, AttitudeWorks
   const double q = -gx * s + gy * c;
   const Eigen::RowVector3d dp(hxx * c + hxy * s, hxy * c + hyy * s, q);
   const Eigen::RowVector3d dq(-hxx * s + hxy * c, -hxy * s + hyy * c, -p);
-  const PlaneAttitude plane = planeAttitude(p, q);
-  result.attitude = {d->height, plane.roll, plane.pitch};
-  result.jacobian.row(0) << gx, gy, 0.0;
-  result.jacobian.row(1) = plane.droll_dp * dp + plane.droll_dq * dq;
-  result.jacobian.row(2) = plane.dpitch_dp * dp;
-  result.suspension.setZero();
-  result.contact_residual = 0.0;
-  result.iterations = 0;
+  setPlaneAttitude(d->height, Eigen::RowVector3d(gx, gy, 0.0), p, dp, q, dq, result);
   return AttitudeStatus::kOk;
 }
 

@@ -120,7 +120,8 @@ bool RockerBogieAttitudeModel::contactResiduals(const PlanarPose& pose, const Ve
     const double stretch = std::sqrt(1.0 + ground->gradient.squaredNorm());
     residual(k) = centre.z() - ground->height - r_w * stretch;
     // d(residual)/d(centre) = (-a, 1) with a the gradient of height + r_w * stretch.
-    const Eigen::Vector2d a = ground->gradient + r_w * (ground->hessian * ground->gradient) / stretch;
+    const Eigen::Vector2d a =
+        ground->gradient + r_w * (ground->hessian * ground->gradient) / stretch;
     const auto along = [&a](const Eigen::Vector3d& d_centre) {
       return d_centre.z() - a.dot(d_centre.head<2>());
     };

@@ -56,8 +56,8 @@ IntegrationStatus fromAttitudeStatus(AttitudeStatus status) {
 TrajectorySample makeSample(double t, const Eigen::Vector3d& state, double v, double omega,
                             const Attitude& attitude) {
   const double curvature = v != 0.0 ? omega / v : std::numeric_limits<double>::quiet_NaN();
-  return {t, state.x(), state.y(), attitude.z, state.z(), attitude.roll, attitude.pitch, v,
-          omega, curvature};
+  return {t, state.x(), state.y(), attitude.z, state.z(), attitude.roll, attitude.pitch,
+          v, omega,     curvature};
 }
 
 bool validateRequest(const IntegratorOptions& options, double duration,
@@ -104,8 +104,7 @@ void prepareResult(const Eigen::Vector3d& initial, int parameter_count, bool sen
 void validateOptions(const IntegratorOptions& options) {
   if (!(options.step > 0.0) || !(options.relative_tolerance > 0.0) ||
       !(options.absolute_tolerance > 0.0) || options.max_steps <= 0) {
-    throw std::invalid_argument(
-        "RoverIntegrator: step, tolerances and max_steps must be positive");
+    throw std::invalid_argument("RoverIntegrator: step, tolerances and max_steps must be positive");
   }
 }
 

@@ -41,7 +41,8 @@ int roverRhs(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
   double v = 0.0, omega = 0.0;
   data.controls->evaluate(t, v, omega, nullptr, nullptr);
   ++data.evaluations;
-  const AttitudeStatus status = data.kinematics->rates(state, v, omega, *data.workspace, data.rates);
+  const AttitudeStatus status =
+      data.kinematics->rates(state, v, omega, *data.workspace, data.rates);
   if (status != AttitudeStatus::kOk) {
     data.failure = status;
     return -1;  // unrecoverable: the vehicle cannot be placed there
@@ -57,7 +58,8 @@ int roverSensitivityRhs(int ns, realtype t, N_Vector y, N_Vector /*ydot*/, N_Vec
   double v = 0.0, omega = 0.0;
   data.controls->evaluate(t, v, omega, data.dv_dq.data(), data.domega_dq.data());
   ++data.evaluations;
-  const AttitudeStatus status = data.kinematics->rates(state, v, omega, *data.workspace, data.rates);
+  const AttitudeStatus status =
+      data.kinematics->rates(state, v, omega, *data.workspace, data.rates);
   if (status != AttitudeStatus::kOk) {
     data.failure = status;
     return -1;
@@ -159,7 +161,8 @@ class RoverIntegrator::CvodesSession {
     if (with_sensitivities) {
       for (int i = 0; i < parameter_count_; ++i) N_VConst(0.0, ys_[i]);
       if (CVodeSensReInit(memory_, CV_SIMULTANEOUS, ys_) != CV_SUCCESS) {
-        fail(result, IntegrationStatus::kSolverFailure, "CVODES sensitivity re-initialisation failed");
+        fail(result, IntegrationStatus::kSolverFailure,
+             "CVODES sensitivity re-initialisation failed");
         return;
       }
     }
@@ -185,7 +188,9 @@ class RoverIntegrator::CvodesSession {
       return;
     }
     result.t_reached = duration;
-    result.final_state = duration > 0.0 ? Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(N_VGetArrayPointer(y_))) : initial;
+    result.final_state =
+        duration > 0.0 ? Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(N_VGetArrayPointer(y_)))
+                       : initial;
     if (with_sensitivities && duration > 0.0) {
       if (CVodeGetSensDky(memory_, duration, 0, ys_) != CV_SUCCESS) {
         fail(result, IntegrationStatus::kSolverFailure, "CVodeGetSensDky failed");

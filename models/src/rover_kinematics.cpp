@@ -10,7 +10,8 @@ AttitudeStatus RoverKinematics::rates(const Eigen::Vector3d& state, double v, do
       model_->compute({state.x(), state.y(), state.z()}, workspace, out.attitude);
   if (status != AttitudeStatus::kOk) return status;
   const double ch = std::cos(state.z()), sh = std::sin(state.z());
-  const double cp = std::cos(out.attitude.attitude.pitch), sp = std::sin(out.attitude.attitude.pitch);
+  const double cp = std::cos(out.attitude.attitude.pitch),
+               sp = std::sin(out.attitude.attitude.pitch);
   const double cr = std::cos(out.attitude.attitude.roll), sr = std::sin(out.attitude.attitude.roll);
   const Eigen::RowVector3d d_roll = out.attitude.jacobian.row(1);
   const Eigen::RowVector3d d_pitch = out.attitude.jacobian.row(2);
@@ -28,8 +29,7 @@ AttitudeStatus RoverKinematics::stateSpaceRates(const Eigen::Matrix<double, 5, 1
                                                 AttitudeWorkspace& workspace,
                                                 RoverStateSpaceRates& out) const {
   RoverRates reduced;
-  const AttitudeStatus status =
-      rates(state.head<3>(), state(3), state(4), workspace, reduced);
+  const AttitudeStatus status = rates(state.head<3>(), state(3), state(4), workspace, reduced);
   if (status != AttitudeStatus::kOk) return status;
   out.rate << reduced.rate, control;
   out.d_state.setZero();

@@ -28,8 +28,8 @@ void checkAxis(const std::vector<double>& axis, const std::string& what) {
 std::pair<std::size_t, double> locate(const std::vector<double>& axis, double x) {
   if (!(x > axis.front())) return {0, 0.0};
   if (x >= axis.back()) return {axis.size() - 2, 1.0};
-  const std::size_t i = static_cast<std::size_t>(std::upper_bound(axis.begin(), axis.end(), x) -
-                                                 axis.begin()) - 1;
+  const std::size_t i =
+      static_cast<std::size_t>(std::upper_bound(axis.begin(), axis.end(), x) - axis.begin()) - 1;
   return {i, (x - axis[i]) / (axis[i + 1] - axis[i])};
 }
 
@@ -70,7 +70,9 @@ std::vector<double> numbers(const nlohmann::json& json, const char* key,
 
 SegwayPitchResponse::SegwayPitchResponse(std::vector<double> accelerations,
                                          std::vector<double> slopes, Eigen::MatrixXd pitch)
-    : accelerations_(std::move(accelerations)), slopes_(std::move(slopes)), pitch_(std::move(pitch)) {
+    : accelerations_(std::move(accelerations)),
+      slopes_(std::move(slopes)),
+      pitch_(std::move(pitch)) {
   checkAxis(accelerations_, "pitch response: acceleration_mps2");
   checkAxis(slopes_, "pitch response: slope_rad");
   if (pitch_.rows() != static_cast<Eigen::Index>(accelerations_.size()) ||
@@ -115,8 +117,8 @@ SegwayLookups defaultSegwayLookups() {
   Eigen::MatrixXd pitch(accelerations.size(), slopes.size());
   for (std::size_t i = 0; i < accelerations.size(); ++i) {
     for (std::size_t j = 0; j < slopes.size(); ++j) {
-      pitch(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
-          -std::atan((accelerations[i] + kGravity * std::sin(slopes[j])) / (kGravity * std::cos(slopes[j])));
+      pitch(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = -std::atan(
+          (accelerations[i] + kGravity * std::sin(slopes[j])) / (kGravity * std::cos(slopes[j])));
     }
   }
   std::vector<double> bound_slopes, v_max, a_max;
@@ -126,7 +128,8 @@ SegwayLookups defaultSegwayLookups() {
     const double magnitude = std::abs(d);
     bound_slopes.push_back(slope);
     v_max.push_back(!climbable ? 0.0 : magnitude <= 5 ? 3.5 : 3.5 - 2.5 * (magnitude - 5) / 12.0);
-    a_max.push_back(!climbable ? 0.0 : std::max(0.0, 2.0 - kGravity * std::sin(std::abs(slope)) * 0.5));
+    a_max.push_back(!climbable ? 0.0
+                               : std::max(0.0, 2.0 - kGravity * std::sin(std::abs(slope)) * 0.5));
   }
   return {SegwayPitchResponse(accelerations, slopes, pitch),
           SegwaySlopeBounds(bound_slopes, v_max, a_max)};
@@ -162,7 +165,8 @@ SegwayLookups readSegwayLookups(const std::filesystem::path& pitch_response_file
                               numbers(bounds, "v_max", slope_bounds_file),
                               numbers(bounds, "a_max", slope_bounds_file))};
   } catch (const InputError& e) {
-    throw InputError(pitch_response_file.string() + " / " + slope_bounds_file.string() + ": " + e.what());
+    throw InputError(pitch_response_file.string() + " / " + slope_bounds_file.string() + ": " +
+                     e.what());
   }
 }
 

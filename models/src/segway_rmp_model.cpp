@@ -18,10 +18,12 @@ SegwayRmpModel::SegwayRmpModel(const terrain::TerrainSurface& surface, SegwayLoo
 
 double SegwayRmpModel::curvatureLimit(double v) const {
   const double v2 = v * v;
-  return v2 > 0.0 ? std::min(limits_.kappa_max, limits_.lateral_acceleration / v2) : limits_.kappa_max;
+  return v2 > 0.0 ? std::min(limits_.kappa_max, limits_.lateral_acceleration / v2)
+                  : limits_.kappa_max;
 }
 
-std::optional<SegwayPose> SegwayRmpModel::pose(const SegwayState& state, double acceleration) const {
+std::optional<SegwayPose> SegwayRmpModel::pose(const SegwayState& state,
+                                               double acceleration) const {
   const std::optional<terrain::TangentPlanePatch> patch =
       terrain::TangentPlanePatch::at(surface_, {state.x, state.y}, state.heading);
   if (!patch) return std::nullopt;
@@ -36,7 +38,8 @@ SegwayConstraintViolations SegwayRmpModel::check(const SegwayState& state,
   const double speed = std::abs(state.v);
   const double curvature = speed > 0.0 ? state.omega / state.v : 0.0;
   v.curvature = excess(std::abs(state.omega), speed * curvatureLimit(speed));
-  v.curvature_rate = excess(std::abs(control.y() - control.x() * curvature), speed * limits_.sigma_max);
+  v.curvature_rate =
+      excess(std::abs(control.y() - control.x() * curvature), speed * limits_.sigma_max);
   v.pitch = excess(std::abs(pose.platform_pitch), limits_.pitch_max);
   v.roll = excess(std::abs(pose.patch.roll()), limits_.roll_max);
   const double v_limit = std::abs(pose.slope) > limits_.max_slope
@@ -58,7 +61,8 @@ bool SegwayRmpModel::propagate(const SegwayState& state, const Eigen::Vector2d& 
   using Vector5 = Eigen::Matrix<double, 5, 1>;
   const auto rates = [&control](const Vector5& s) {
     return (Vector5() << s(3) * std::cos(s(2)), s(3) * std::sin(s(2)), s(4), control.x(),
-            control.y()).finished();
+            control.y())
+        .finished();
   };
   Vector5 s;
   s << 0.0, 0.0, 0.0, state.v, state.omega;
@@ -71,12 +75,12 @@ bool SegwayRmpModel::propagate(const SegwayState& state, const Eigen::Vector2d& 
     s += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
   }
   const Eigen::Vector3d point = patch->toMap(s(0), s(1));
-  const std::optional<terrain::TangentPlanePatch> next =
-      patch->next(surface_, {s(0), s(1), s(2)});
+  const std::optional<terrain::TangentPlanePatch> next = patch->next(surface_, {s(0), s(1), s(2)});
   if (!next) return false;
   end.x = point.x();
   end.y = point.y();
-  end.heading = state.heading + std::remainder(next->heading() - state.heading, 2.0 * 3.14159265358979323846);
+  end.heading =
+      state.heading + std::remainder(next->heading() - state.heading, 2.0 * 3.14159265358979323846);
   end.v = s(3);
   end.omega = s(4);
   return true;

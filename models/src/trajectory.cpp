@@ -11,9 +11,9 @@ constexpr std::array<const char*, kTrajectoryColumnCount> kColumnNames{
 
 // The samples' members in TrajectoryColumn order.
 constexpr std::array<double TrajectorySample::*, kTrajectoryColumnCount> kMembers{
-    &TrajectorySample::t,       &TrajectorySample::x,     &TrajectorySample::y,
-    &TrajectorySample::z,       &TrajectorySample::heading, &TrajectorySample::roll,
-    &TrajectorySample::pitch,   &TrajectorySample::v,     &TrajectorySample::omega,
+    &TrajectorySample::t,        &TrajectorySample::x,       &TrajectorySample::y,
+    &TrajectorySample::z,        &TrajectorySample::heading, &TrajectorySample::roll,
+    &TrajectorySample::pitch,    &TrajectorySample::v,       &TrajectorySample::omega,
     &TrajectorySample::curvature};
 
 }  // namespace

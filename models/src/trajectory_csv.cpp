@@ -65,9 +65,9 @@ double parseNumber(const std::string& field, const std::string& source, std::siz
   const double value = std::strtod(field.c_str(), &end);
   const bool parsed = !field.empty() && end == field.c_str() + field.size() && errno != ERANGE;
   if (parsed && (std::isfinite(value) || (may_be_unknown && std::isnan(value)))) return value;
-  fail(source, line, std::string("column ") + trajectoryColumnName(column) + ": '" + field +
-                         (may_be_unknown ? "' is neither a finite number nor nan"
-                                         : "' is not a finite number"));
+  fail(source, line,
+       std::string("column ") + trajectoryColumnName(column) + ": '" + field +
+           (may_be_unknown ? "' is neither a finite number nor nan" : "' is not a finite number"));
 }
 
 }  // namespace
@@ -83,8 +83,9 @@ Trajectory readTrajectoryCsv(std::istream& in, const std::string& source) {
     if (trim(line).empty()) continue;
     const std::vector<std::string> fields = splitFields(line);
     if (fields.size() != layout.size()) {
-      fail(source, line_number, "expected " + std::to_string(layout.size()) + " fields, got " +
-                                    std::to_string(fields.size()));
+      fail(source, line_number,
+           "expected " + std::to_string(layout.size()) + " fields, got " +
+               std::to_string(fields.size()));
     }
     TrajectorySample sample = TrajectorySample::unknown();
     for (std::size_t i = 0; i < fields.size(); ++i) {

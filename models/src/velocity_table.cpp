@@ -35,7 +35,8 @@ double hermite(int n, const Centre& c, const Value& v, double x, double* d_x) {
   const double vi = v(i), vj = v(i + 1), mi = slope(i) * h, mj = slope(i + 1) * h;
   if (d_x != nullptr) {
     *d_x = ((6 * t2 - 6 * t) * vi + (3 * t2 - 4 * t + 1) * mi + (-6 * t2 + 6 * t) * vj +
-            (3 * t2 - 2 * t) * mj) / h;
+            (3 * t2 - 2 * t) * mj) /
+           h;
   }
   return (2 * t3 - 3 * t2 + 1) * vi + (t3 - 2 * t2 + t) * mi + (-2 * t3 + 3 * t2) * vj +
          (t3 - t2) * mj;
@@ -116,8 +117,8 @@ int BinEdges::binOf(double x) const {
 PitchSpeedTable::PitchSpeedTable(BinEdges pitch_edges, std::vector<double> v_max)
     : pitch_edges_(std::move(pitch_edges)), v_max_(std::move(v_max)) {
   if (static_cast<int>(v_max_.size()) != pitch_edges_.binCount()) {
-    throw InputError("pitch table: v_max has " + std::to_string(v_max_.size()) +
-                     " values for " + std::to_string(pitch_edges_.binCount()) + " bins");
+    throw InputError("pitch table: v_max has " + std::to_string(v_max_.size()) + " values for " +
+                     std::to_string(pitch_edges_.binCount()) + " bins");
   }
   checkSpeeds(v_max_.data(), v_max_.size(), "pitch table");
 }
@@ -163,12 +164,13 @@ double RollCurvatureSpeedTable::smoothLookup(double roll, double curvature, doub
   const auto roll_centre = [this](int k) { return roll_edges_.centre(k); };
   // Each roll row interpolated along curvature, then those values along roll.
   const auto row_value = [&](int i) {
-    return hermite(n_curvature, curvature_centre, [&](int j) { return v_max_(i, j); }, curvature,
-                   nullptr);
+    return hermite(
+        n_curvature, curvature_centre, [&](int j) { return v_max_(i, j); }, curvature, nullptr);
   };
   const auto row_slope = [&](int i) {
     double d = 0.0;
-    hermite(n_curvature, curvature_centre, [&](int j) { return v_max_(i, j); }, curvature, &d);
+    hermite(
+        n_curvature, curvature_centre, [&](int j) { return v_max_(i, j); }, curvature, &d);
     return d;
   };
   const double v = hermite(n_roll, roll_centre, row_value, roll, d_roll);
@@ -224,8 +226,8 @@ RollCurvatureSpeedTable readRollCurvatureTable(const std::filesystem::path& path
     }
     for (std::size_t j = 0; j < row.size(); ++j) {
       if (!row[j].is_number()) {
-        throw InputError(path.string() + ": v_max[" + std::to_string(i) + "][" +
-                         std::to_string(j) + "]: must be a number");
+        throw InputError(path.string() + ": v_max[" + std::to_string(i) + "][" + std::to_string(j) +
+                         "]: must be a number");
       }
       v_max(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = row[j].get<double>();
     }
@@ -238,9 +240,8 @@ RollCurvatureSpeedTable readRollCurvatureTable(const std::filesystem::path& path
 }
 
 std::string tableJson(const PitchSpeedTable& table) {
-  nlohmann::json json{{"kind", "pitch"},
-                      {"pitch_edges_rad", table.pitchEdges().edges()},
-                      {"v_max", table.vMax()}};
+  nlohmann::json json{
+      {"kind", "pitch"}, {"pitch_edges_rad", table.pitchEdges().edges()}, {"v_max", table.vMax()}};
   return json.dump();
 }
 
@@ -248,7 +249,8 @@ std::string tableJson(const RollCurvatureSpeedTable& table) {
   nlohmann::json rows = nlohmann::json::array();
   for (Eigen::Index i = 0; i < table.vMax().rows(); ++i) {
     std::vector<double> row(static_cast<std::size_t>(table.vMax().cols()));
-    for (Eigen::Index j = 0; j < table.vMax().cols(); ++j) row[static_cast<std::size_t>(j)] = table.vMax()(i, j);
+    for (Eigen::Index j = 0; j < table.vMax().cols(); ++j)
+      row[static_cast<std::size_t>(j)] = table.vMax()(i, j);
     rows.push_back(row);
   }
   nlohmann::json json{{"kind", "roll_curvature"},

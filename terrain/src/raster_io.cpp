@@ -1,7 +1,7 @@
 #include "terratraj/terrain/raster_io.hpp"
 
-#include <gdal_priv.h>
 #include <cpl_error.h>
+#include <gdal_priv.h>
 
 #include <array>
 #include <cmath>
@@ -50,11 +50,12 @@ GDALDatasetUniquePtr openRaster(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path, error)) fail(path, "no such file");
   if (std::filesystem::is_directory(path, error)) fail(path, "is a directory, not a raster file");
   registerGdalDrivers();
-  GDALDatasetUniquePtr dataset(GDALDataset::Open(path.string().c_str(),
-                                                 GDAL_OF_RASTER | GDAL_OF_READONLY));
+  GDALDatasetUniquePtr dataset(
+      GDALDataset::Open(path.string().c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (!dataset) {
     const std::string reason = QuietGdalErrors::lastMessage();
-    fail(path, "not a raster GDAL can read" + (reason.empty() ? std::string() : " (" + reason + ")"));
+    fail(path,
+         "not a raster GDAL can read" + (reason.empty() ? std::string() : " (" + reason + ")"));
   }
   if (dataset->GetRasterCount() < 1) fail(path, "has no raster band");
   return dataset;
@@ -89,8 +90,7 @@ RasterPlacement placeRaster(GDALDataset& dataset, const std::filesystem::path& p
   }
   if (options.cell && (!(*options.cell > 0.0) || !std::isfinite(*options.cell))) {
     std::ostringstream message;
-    message << "cell size must be a positive finite number of metres (got " << *options.cell
-            << ")";
+    message << "cell size must be a positive finite number of metres (got " << *options.cell << ")";
     fail(path, message.str());
   }
   std::array<double, 6> gt{};
@@ -138,8 +138,8 @@ std::size_t readBand(GDALDataset& dataset, const std::filesystem::path& path,
   std::vector<double> buffer(static_cast<std::size_t>(cols));
   std::size_t valid = 0;
   for (int gdal_row = 0; gdal_row < rows; ++gdal_row) {
-    if (band->RasterIO(GF_Read, 0, gdal_row, cols, 1, buffer.data(), cols, 1, GDT_Float64, 0,
-                       0) != CE_None) {
+    if (band->RasterIO(GF_Read, 0, gdal_row, cols, 1, buffer.data(), cols, 1, GDT_Float64, 0, 0) !=
+        CE_None) {
       fail(path, "read error at row " + std::to_string(gdal_row) + " (" +
                      QuietGdalErrors::lastMessage() + ")");
     }
@@ -200,8 +200,7 @@ RasterContents readRaster(const std::filesystem::path& path, const RasterLoadOpt
 
 }  // namespace
 
-ElevationMap loadElevationMap(const std::filesystem::path& path,
-                              const RasterLoadOptions& options) {
+ElevationMap loadElevationMap(const std::filesystem::path& path, const RasterLoadOptions& options) {
   RasterContents contents = readRaster(path, options, Georeferencing::kRequired);
   if (contents.valid_cells == 0) fail(path, "holds no valid height (every cell is no-data)");
   return std::move(*contents.map);
@@ -247,12 +246,11 @@ void saveGeoTiff(const ElevationMap& map, const std::filesystem::path& path) {
   if (driver == nullptr) fail(path, "GDAL has no GTiff driver");
   const GridGeometry& g = map.geometry();
   const std::vector<std::string> names = map.layerNames();
-  GDALDatasetUniquePtr dataset(driver->Create(path.string().c_str(), g.cols, g.rows,
-                                              static_cast<int>(names.size()), GDT_Float32,
-                                              nullptr));
+  GDALDatasetUniquePtr dataset(driver->Create(
+      path.string().c_str(), g.cols, g.rows, static_cast<int>(names.size()), GDT_Float32, nullptr));
   if (!dataset) fail(path, "cannot be written (" + QuietGdalErrors::lastMessage() + ")");
-  std::array<double, 6> gt{g.world_origin.x(), g.cell, 0.0, g.world_origin.y() + g.height(),
-                           0.0, -g.cell};
+  std::array<double, 6> gt{
+      g.world_origin.x(), g.cell, 0.0, g.world_origin.y() + g.height(), 0.0, -g.cell};
   dataset->SetGeoTransform(gt.data());
   if (!map.projectionWkt().empty()) dataset->SetProjection(map.projectionWkt().c_str());
   for (std::size_t b = 0; b < names.size(); ++b) {

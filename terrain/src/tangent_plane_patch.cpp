@@ -6,8 +6,7 @@
 namespace terratraj::terrain {
 
 std::optional<TangentPlanePatch> TangentPlanePatch::at(const TerrainSurface& surface,
-                                                       const Eigen::Vector2d& xy,
-                                                       double heading) {
+                                                       const Eigen::Vector2d& xy, double heading) {
   const std::optional<HeightSample> s = surface.sample(xy);
   if (!s) return std::nullopt;
   return fromNormal(Eigen::Vector3d(xy.x(), xy.y(), s->height), s->normal(), heading);

@@ -27,7 +27,8 @@ constexpr std::array<KindInfo, 8> kKinds{{
     {TerrainKind::kHills, "hills", "hills and valleys: random Gaussian bumps and hollows"},
     {TerrainKind::kCorridor, "corridor",
      "gentle hills crossed by north-south walls, each passable only through a narrow corridor"},
-    {TerrainKind::kObstacles, "obstacles", "hills with random lethal boulders (about 12 % of the area)"},
+    {TerrainKind::kObstacles, "obstacles",
+     "hills with random lethal boulders (about 12 % of the area)"},
     {TerrainKind::kDeadEnd, "dead_end",
      "hills with U-shaped lethal traps opening toward the start (west)"},
     {TerrainKind::kForest, "forest", "gentle ground with many small lethal clusters (tree trunks)"},
@@ -124,7 +125,8 @@ void generateRamp(ElevationMap& map) {
   const double rise = std::tan(10.0 * kPi / 180.0);
   const GridGeometry& g = map.geometry();
   for (int r = 0; r < g.rows; ++r) {
-    for (int c = 0; c < g.cols; ++c) map.elevation()(r, c) = static_cast<float>(rise * (c + 0.5) * g.cell);
+    for (int c = 0; c < g.cols; ++c)
+      map.elevation()(r, c) = static_cast<float>(rise * (c + 0.5) * g.cell);
   }
 }
 

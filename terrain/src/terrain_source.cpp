@@ -30,8 +30,8 @@ ElevationMap loadTerrain(const TerrainSource& source) {
   if (source.obstacles.file) {
     RasterLoadOptions lethal_options;
     lethal_options.max_cells = source.raster.max_cells;
-    markLethalFromLayer(map, loadLethalRaster(*source.obstacles.file, map.geometry(),
-                                              lethal_options));
+    markLethalFromLayer(map,
+                        loadLethalRaster(*source.obstacles.file, map.geometry(), lethal_options));
   }
   if (source.obstacles.max_slope) markLethalBySlope(map, *source.obstacles.max_slope);
   return map;

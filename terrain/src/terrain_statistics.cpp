@@ -45,8 +45,8 @@ TerrainStatistics computeTerrainStatistics(const ElevationMap& map) {
     double slope_sum = 0.0;
     for (const double s : slopes) slope_sum += s;
     stats.mean_slope = slope_sum / static_cast<double>(slopes.size());
-    const std::size_t rank = static_cast<std::size_t>(
-        std::ceil(0.95 * static_cast<double>(slopes.size()))) - 1;
+    const std::size_t rank =
+        static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(slopes.size()))) - 1;
     std::nth_element(slopes.begin(), slopes.begin() + static_cast<std::ptrdiff_t>(rank),
                      slopes.end());
     stats.p95_slope = slopes[rank];

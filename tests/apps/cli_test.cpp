@@ -43,13 +43,16 @@ class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("terratraj_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("terratraj_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
+  void write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name)) << text;
+  }
   fs::path dir_;
 };
 
@@ -122,13 +125,15 @@ TEST_F(CliTest, TerrainGenerateWritesEveryKind) {
   EXPECT_EQ(run({"terrain", "generate", "hills", "--out", path("x.tif"), "--cell", "abc"}).status,
             kExitBadInput);
   write("plain_file", "not a folder");  // a folder cannot be made below a file, even by root
-  const CliResult unwritable = run({"terrain", "generate", "hills", "--out", path("plain_file/x.tif")});
+  const CliResult unwritable =
+      run({"terrain", "generate", "hills", "--out", path("plain_file/x.tif")});
   EXPECT_EQ(unwritable.status, kExitBadInput);
   EXPECT_THAT(unwritable.err, HasSubstr("plain_file"));
 }
 
 TEST_F(CliTest, DemoWritesTerrainAndSummary) {
-  const CliResult r = run({"demo", "--out-dir", path("demo"), "--rows", "96", "--cols", "96", "--json"});
+  const CliResult r =
+      run({"demo", "--out-dir", path("demo"), "--rows", "96", "--cols", "96", "--json"});
   ASSERT_EQ(r.status, kExitSuccess) << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
   EXPECT_EQ(json["status"], "ok");
@@ -150,6 +155,28 @@ TEST_F(CliTest, CheckReadsAProblemAndItsTerrain) {
   EXPECT_EQ(json["problem"]["vehicle"]["model"], "rocker_bogie");
   EXPECT_NEAR(json["problem"]["goal"]["heading"].get<double>(), M_PI / 2, 1e-12);
   EXPECT_GT(json["terrain"]["lethal_cells"].get<int>(), 0);
+  EXPECT_TRUE(json["start_attitude"]["pitch"].is_number());
+
+  // The rocker-bogie rover cannot rest with its wheels over the map's west edge.
+  write("edge.yaml",
+        "terrain:\n  generate: {kind: flat, rows: 64, cols: 64, cell: 0.25}\n"
+        "vehicle: {model: rocker_bogie}\n"
+        "start: {x: 0.1, y: 8.0, heading_deg: 0}\n"
+        "goal:  {x: 10.0, y: 8.0, heading_deg: 0}\n");
+  const CliResult edge = run({"check", path("edge.yaml")});
+  EXPECT_EQ(edge.status, kExitBadInput);
+  EXPECT_THAT(edge.err, HasSubstr("start: the rocker_bogie vehicle cannot rest on the terrain"));
+
+  // Look-up tables are read and validated.
+  write("pitch.json", R"({"kind": "pitch", "pitch_edges_rad": [0.5, 0.0], "v_max": [1]})");
+  write("tables.yaml",
+        "terrain:\n  generate: {kind: flat, rows: 64, cols: 64, cell: 0.25}\n"
+        "vehicle: {tables: {pitch: pitch.json}}\n"
+        "start: {x: 2.0, y: 8.0, heading_deg: 0}\n"
+        "goal:  {x: 10.0, y: 8.0, heading_deg: 0}\n");
+  const CliResult tables = run({"check", path("tables.yaml")});
+  EXPECT_EQ(tables.status, kExitBadInput);
+  EXPECT_THAT(tables.err, HasSubstr("pitch.json: pitch_edges_rad: edges must increase strictly"));
 
   write("off_map.yaml",
         "terrain:\n  generate: {kind: flat, rows: 64, cols: 64, cell: 0.25}\n"
@@ -160,15 +187,18 @@ TEST_F(CliTest, CheckReadsAProblemAndItsTerrain) {
   EXPECT_THAT(off.err, HasSubstr("goal"));
   EXPECT_THAT(off.err, HasSubstr("outside the map"));
 
-  write("bad_key.yaml", "terrain:\n  generate: {kind: flat}\nstart: {x: 1, y: 1, heading: 0}\n"
-                        "goal: {x: 2, y: 1, heading: 0}\nvehicle:\n  limits: {v_max: -1}\n");
+  write("bad_key.yaml",
+        "terrain:\n  generate: {kind: flat}\nstart: {x: 1, y: 1, heading: 0}\n"
+        "goal: {x: 2, y: 1, heading: 0}\nvehicle:\n  limits: {v_max: -1}\n");
   const CliResult bad = run({"check", path("bad_key.yaml"), "--json"});
   EXPECT_EQ(bad.status, kExitBadInput);
   EXPECT_THAT(bad.err, HasSubstr("vehicle.limits.v_max: must be > 0"));
-  EXPECT_THAT(nlohmann::json::parse(bad.out)["error"].get<std::string>(), HasSubstr("bad_key.yaml:6"));
+  EXPECT_THAT(nlohmann::json::parse(bad.out)["error"].get<std::string>(),
+              HasSubstr("bad_key.yaml:6"));
 
-  write("terrain_missing.yaml", "terrain:\n  file: dem/missing.tif\nstart: {x: 1, y: 1, heading: 0}\n"
-                                "goal: {x: 2, y: 1, heading: 0}\n");
+  write("terrain_missing.yaml",
+        "terrain:\n  file: dem/missing.tif\nstart: {x: 1, y: 1, heading: 0}\n"
+        "goal: {x: 2, y: 1, heading: 0}\n");
   const CliResult missing = run({"check", path("terrain_missing.yaml")});
   EXPECT_EQ(missing.status, kExitBadInput);
   EXPECT_THAT(missing.err, HasSubstr("dem/missing.tif: no such file"));
@@ -193,8 +223,9 @@ TEST_F(CliTest, LutBuildAndCheckAgreeWithAHandComputation) {
   for (int i = 1; i <= 200; ++i) log << i << ",0,0,0.0,0.1," << i << "," << 0.1 * i << "\n";
   log << "201,0,0,0.0,-0.3,3,0\n202,0,0,0.0,-0.3,4,0\n";
   write("drive.csv", log.str());
-  const CliResult built = run({"lut", "build", "--log", path("drive.csv"), "--out", path("pitch.json"),
-                               "--pitch-edges", "-0.5,-0.25,0,0.25,0.5", "--json"});
+  const CliResult built =
+      run({"lut", "build", "--log", path("drive.csv"), "--out", path("pitch.json"), "--pitch-edges",
+           "-0.5,-0.25,0,0.25,0.5", "--json"});
   ASSERT_EQ(built.status, kExitSuccess) << built.err;
   const nlohmann::json report = nlohmann::json::parse(built.out);
   EXPECT_EQ(report["samples"], 202);
@@ -206,9 +237,11 @@ TEST_F(CliTest, LutBuildAndCheckAgreeWithAHandComputation) {
 
   // A trajectory: 4 states, 1 above its bin's limit (pitch 0.1, v 250 > 199.5), 1 in an empty
   // bin (pitch 0.3, v 1 > 0): 50 %.
-  write("traj.csv", "t,x,y,roll,pitch,v,curvature\n0,0,0,0,0.1,100,0\n1,1,0,0,0.1,250,0\n"
-                    "2,2,0,0,-0.3,4,0\n3,3,0,0,0.3,1,0\n");
-  const CliResult checked = run({"lut", "check", path("traj.csv"), "--table", path("pitch.json"), "--json"});
+  write("traj.csv",
+        "t,x,y,roll,pitch,v,curvature\n0,0,0,0,0.1,100,0\n1,1,0,0,0.1,250,0\n"
+        "2,2,0,0,-0.3,4,0\n3,3,0,0,0.3,1,0\n");
+  const CliResult checked =
+      run({"lut", "check", path("traj.csv"), "--table", path("pitch.json"), "--json"});
   ASSERT_EQ(checked.status, kExitSuccess) << checked.err;
   const nlohmann::json check = nlohmann::json::parse(checked.out);
   EXPECT_EQ(check["states"], 4);
@@ -223,7 +256,8 @@ TEST_F(CliTest, LutCommandsRejectBadInput) {
   write("no_xy.csv", "t,roll,pitch,v,curvature\n0,0,0,1,0\n");
   EXPECT_THAT(run({"lut", "build", "--log", path("no_xy.csv"), "--out", path("t.json")}).err,
               HasSubstr("must name the columns x and y"));
-  const CliResult missing = run({"lut", "build", "--log", path("no_roll.csv"), "--out", path("t.json")});
+  const CliResult missing =
+      run({"lut", "build", "--log", path("no_roll.csv"), "--out", path("t.json")});
   EXPECT_EQ(missing.status, kExitBadInput);
   EXPECT_THAT(missing.err, HasSubstr("needs a 'roll' column"));
   write("log.csv", "t,x,y,roll,pitch,v,curvature\n0,0,0,0,0,1,0\n");
@@ -231,10 +265,14 @@ TEST_F(CliTest, LutCommandsRejectBadInput) {
                                "--pitch-edges", "0.2,0.1"});
   EXPECT_EQ(edges.status, kExitBadInput);
   EXPECT_THAT(edges.err, HasSubstr("--pitch-edges: edges must increase strictly"));
-  EXPECT_EQ(run({"lut", "build", "--log", path("log.csv"), "--out", path("t.json"), "--kind", "yaw"}).status,
-            kExitBadInput);
+  EXPECT_EQ(
+      run({"lut", "build", "--log", path("log.csv"), "--out", path("t.json"), "--kind", "yaw"})
+          .status,
+      kExitBadInput);
   EXPECT_EQ(run({"lut", "build", "--log", path("log.csv"), "--out", path("t.json"), "--pitch-edges",
-                 "0:1:x"}).status, kExitBadInput);
+                 "0:1:x"})
+                .status,
+            kExitBadInput);
   write("table.json", R"({"kind": "pitch", "pitch_edges_rad": [0, 1], "v_max": [1, 2]})");
   const CliResult bad_table = run({"lut", "check", path("log.csv"), "--table", path("table.json")});
   EXPECT_EQ(bad_table.status, kExitBadInput);
@@ -243,13 +281,16 @@ TEST_F(CliTest, LutCommandsRejectBadInput) {
 }
 
 TEST_F(CliTest, LutPhysicsAndSimulatedLog) {
-  const CliResult physics = run({"lut", "physics", "--out", path("rc.json"), "--kind", "roll_curvature", "--json"});
+  const CliResult physics =
+      run({"lut", "physics", "--out", path("rc.json"), "--kind", "roll_curvature", "--json"});
   ASSERT_EQ(physics.status, kExitSuccess) << physics.err;
   EXPECT_EQ(nlohmann::json::parse(physics.out)["table"]["v_max"].size(), 16u);
-  const CliResult simulated = run({"lut", "simulate-log", "--out", path("drive.csv"), "--duration", "60", "--json"});
+  const CliResult simulated =
+      run({"lut", "simulate-log", "--out", path("drive.csv"), "--duration", "60", "--json"});
   ASSERT_EQ(simulated.status, kExitSuccess) << simulated.err;
   EXPECT_EQ(nlohmann::json::parse(simulated.out)["samples"], 601);
-  const CliResult built = run({"lut", "build", "--log", path("drive.csv"), "--out", path("p.json")});
+  const CliResult built =
+      run({"lut", "build", "--log", path("drive.csv"), "--out", path("p.json")});
   EXPECT_EQ(built.status, kExitSuccess) << built.err;
   EXPECT_THAT(built.out, HasSubstr("v_max [m/s]"));
 }

@@ -57,8 +57,10 @@ Eigen::Matrix3d finiteDifferenceJacobian(const TerrainFollowingModel& model, con
     EXPECT_EQ(model.compute(plus, workspace, a), AttitudeStatus::kOk);
     workspace.has_warm_start = false;
     EXPECT_EQ(model.compute(minus, workspace, b), AttitudeStatus::kOk);
-    jacobian.col(k) = Eigen::Vector3d(a.attitude.z - b.attitude.z, a.attitude.roll - b.attitude.roll,
-                                      a.attitude.pitch - b.attitude.pitch) / (2 * h);
+    jacobian.col(k) =
+        Eigen::Vector3d(a.attitude.z - b.attitude.z, a.attitude.roll - b.attitude.roll,
+                        a.attitude.pitch - b.attitude.pitch) /
+        (2 * h);
   }
   return jacobian;
 }
@@ -105,7 +107,9 @@ TEST(AttitudeModels, JacobiansMatchFiniteDifferences) {
       const double scale = std::max(1.0, result.jacobian.cwiseAbs().maxCoeff());
       EXPECT_LT((result.jacobian - fd).cwiseAbs().maxCoeff(), 2e-5 * scale)
           << model->name() << " at (" << pose.x << ", " << pose.y << ", " << pose.heading
-          << ")\nanalytic\n" << result.jacobian << "\nfinite differences\n" << fd;
+          << ")\nanalytic\n"
+          << result.jacobian << "\nfinite differences\n"
+          << fd;
       ++checked;
     }
     EXPECT_GE(checked, 35) << model->name();

@@ -40,20 +40,25 @@ TEST(BinEdges, FindsBinsAndClampsOutside) {
   EXPECT_EQ(edges.binOf(-9.0), 0);
   EXPECT_EQ(edges.binOf(9.0), 3);
   EXPECT_EQ(edges.binOf(0.5), 3);
-  EXPECT_THAT(errorOf([] { BinEdges({0.0, 0.0, 1.0}, "roll"); }), HasSubstr("roll: edges must increase strictly"));
+  EXPECT_THAT(errorOf([] {
+                BinEdges({0.0, 0.0, 1.0}, "roll");
+              }),
+              HasSubstr("roll: edges must increase strictly"));
   EXPECT_THAT(errorOf([] { BinEdges({0.0}, "roll"); }), HasSubstr("at least two edges"));
   EXPECT_THAT(errorOf([] { BinEdges({0.0, std::nan("")}, "roll"); }), HasSubstr("finite"));
 }
 
 TEST(PitchSpeedTable, LooksUpByBinAndSmoothly) {
   // The contract's example.
-  const PitchSpeedTable table(BinEdges({-0.5, -0.25, 0.0, 0.25, 0.5}, "pitch"), {3.0, 4.0, 4.0, 2.0});
+  const PitchSpeedTable table(BinEdges({-0.5, -0.25, 0.0, 0.25, 0.5}, "pitch"),
+                              {3.0, 4.0, 4.0, 2.0});
   EXPECT_EQ(table.lookup(-0.3), 3.0);
   EXPECT_EQ(table.lookup(0.1), 4.0);
   EXPECT_EQ(table.lookup(0.3), 2.0);
   EXPECT_EQ(table.lookup(-2.0), 3.0);  // nearest bin outside
   for (int i = 0; i < 4; ++i) {
-    EXPECT_NEAR(table.smoothLookup(table.pitchEdges().centre(i)), table.vMax()[static_cast<std::size_t>(i)], 1e-12);
+    EXPECT_NEAR(table.smoothLookup(table.pitchEdges().centre(i)),
+                table.vMax()[static_cast<std::size_t>(i)], 1e-12);
   }
   for (double p = -0.6; p < 0.6; p += 0.0137) {
     double d = 0.0;
@@ -67,7 +72,10 @@ TEST(PitchSpeedTable, LooksUpByBinAndSmoothly) {
   table.smoothLookup(-0.125 - 1e-10, &left);
   table.smoothLookup(-0.125 + 1e-10, &right);
   EXPECT_NEAR(left, right, 1e-6);
-  EXPECT_THAT(errorOf([] { PitchSpeedTable(BinEdges({0, 1}, "p"), {1.0, 2.0}); }), HasSubstr("2 values for 1 bins"));
+  EXPECT_THAT(errorOf([] {
+                PitchSpeedTable(BinEdges({0, 1}, "p"), {1.0, 2.0});
+              }),
+              HasSubstr("2 values for 1 bins"));
   EXPECT_THAT(errorOf([] { PitchSpeedTable(BinEdges({0, 1}, "p"), {-1.0}); }), HasSubstr(">= 0"));
 }
 
@@ -84,34 +92,53 @@ TEST(RollCurvatureSpeedTable, SmoothLookupHasTheRightGradient) {
       double dr = 0.0, dk = 0.0;
       table.smoothLookup(r, k, &dr, &dk);
       const double h = 1e-7;
-      EXPECT_NEAR(dr, (table.smoothLookup(r + h, k) - table.smoothLookup(r - h, k)) / (2 * h), 1e-4);
-      EXPECT_NEAR(dk, (table.smoothLookup(r, k + h) - table.smoothLookup(r, k - h)) / (2 * h), 1e-4);
+      EXPECT_NEAR(dr, (table.smoothLookup(r + h, k) - table.smoothLookup(r - h, k)) / (2 * h),
+                  1e-4);
+      EXPECT_NEAR(dk, (table.smoothLookup(r, k + h) - table.smoothLookup(r, k - h)) / (2 * h),
+                  1e-4);
     }
   }
 }
 
 TEST(VelocityTableJson, RoundTripsAndRejectsBadFiles) {
-  const PitchSpeedTable pitch(BinEdges({-0.5, -0.25, 0.0, 0.25, 0.5}, "pitch"), {3.0, 4.0, 4.0, 2.0});
+  const PitchSpeedTable pitch(BinEdges({-0.5, -0.25, 0.0, 0.25, 0.5}, "pitch"),
+                              {3.0, 4.0, 4.0, 2.0});
   const fs::path file = fs::temp_directory_path() / "terratraj_tables_pitch.json";
   writeTable(pitch, file);
   EXPECT_EQ(readTableKind(file), "pitch");
   EXPECT_EQ(readPitchTable(file).vMax(), pitch.vMax());
-  EXPECT_THAT(errorOf([&] { readRollCurvatureTable(file); }), HasSubstr("kind: expected \"roll_curvature\""));
-  const fs::path contract = writeFile("rc.json",
+  EXPECT_THAT(errorOf([&] { readRollCurvatureTable(file); }),
+              HasSubstr("kind: expected \"roll_curvature\""));
+  const fs::path contract = writeFile(
+      "rc.json",
       R"({"kind": "roll_curvature", "roll_edges_rad": [-0.2, 0, 0.2], "curvature_edges": [-1, 0, 1], "v_max": [[1, 2], [3, 4]]})");
   EXPECT_EQ(readRollCurvatureTable(contract).lookup(0.1, -0.5), 3.0);
-  EXPECT_THAT(errorOf([] { readPitchTable(writeFile("a.json", "{not json")); }), HasSubstr("not valid JSON"));
-  EXPECT_THAT(errorOf([] { readPitchTable(writeFile("b.json", R"({"kind": "pitch", "v_max": [1]})")); }),
-              HasSubstr("pitch_edges_rad: missing"));
-  EXPECT_THAT(errorOf([] { readPitchTable(writeFile("c.json", R"({"kind": "pitch", "pitch_edges_rad": [0, -1], "v_max": [1]})")); }),
+  EXPECT_THAT(errorOf([] { readPitchTable(writeFile("a.json", "{not json")); }),
+              HasSubstr("not valid JSON"));
+  EXPECT_THAT(
+      errorOf([] { readPitchTable(writeFile("b.json", R"({"kind": "pitch", "v_max": [1]})")); }),
+      HasSubstr("pitch_edges_rad: missing"));
+  EXPECT_THAT(errorOf([] {
+                readPitchTable(writeFile(
+                    "c.json", R"({"kind": "pitch", "pitch_edges_rad": [0, -1], "v_max": [1]})"));
+              }),
               HasSubstr("edges must increase strictly"));
-  EXPECT_THAT(errorOf([] { readPitchTable(writeFile("d.json", R"({"kind": "pitch", "pitch_edges_rad": [0, 1, 2], "v_max": [1]})")); }),
+  EXPECT_THAT(errorOf([] {
+                readPitchTable(writeFile(
+                    "d.json", R"({"kind": "pitch", "pitch_edges_rad": [0, 1, 2], "v_max": [1]})"));
+              }),
               HasSubstr("1 values for 2 bins"));
-  EXPECT_THAT(errorOf([] { readRollCurvatureTable(writeFile("e.json",
-      R"({"kind": "roll_curvature", "roll_edges_rad": [0, 1], "curvature_edges": [0, 1, 2], "v_max": [[1]]})")); }),
-              HasSubstr("v_max[0]: must hold 2 numbers"));
-  EXPECT_THAT(errorOf([] { readTableKind(writeFile("f.json", R"({"kind": "yaw"})")); }), HasSubstr("not a table kind"));
-  EXPECT_THAT(errorOf([] { readPitchTable("/nonexistent/t.json"); }), HasSubstr("cannot be opened"));
+  EXPECT_THAT(
+      errorOf([] {
+        readRollCurvatureTable(writeFile(
+            "e.json",
+            R"({"kind": "roll_curvature", "roll_edges_rad": [0, 1], "curvature_edges": [0, 1, 2], "v_max": [[1]]})"));
+      }),
+      HasSubstr("v_max[0]: must hold 2 numbers"));
+  EXPECT_THAT(errorOf([] { readTableKind(writeFile("f.json", R"({"kind": "yaw"})")); }),
+              HasSubstr("not a table kind"));
+  EXPECT_THAT(errorOf([] { readPitchTable("/nonexistent/t.json"); }),
+              HasSubstr("cannot be opened"));
 }
 
 TEST(PhysicsTables, FollowAppendixOneByHand) {
@@ -152,7 +179,8 @@ TEST(DataTables, TopOnePercentPerBinByHand) {
   DataTableOptions fill;
   fill.fill_empty = true;
   // Bin 2 lies between filled bins 1 and 3: their mean; bin 0 is outside them and stays 0.
-  EXPECT_EQ(dataPitchTable(states, edges, fill).vMax(), (std::vector<double>{0.0, 149.5, 78.25, 7.0}));
+  EXPECT_EQ(dataPitchTable(states, edges, fill).vMax(),
+            (std::vector<double>{0.0, 149.5, 78.25, 7.0}));
   DataTableOptions half;
   half.top_fraction = 0.5;
   EXPECT_EQ(dataPitchTable(states, edges, half).vMax()[3], 6.0);  // top 2 of {2, 7, 5}
@@ -167,10 +195,10 @@ TEST(DataTables, ViolationFractionsByHand) {
   const RollCurvatureSpeedTable rc(BinEdges({-1, 1}, "roll"), BinEdges({-1, 0, 1}, "curvature"), v);
   DrivingStates states;
   // (pitch, curvature, speed): limits pitch 2|1, rc 3|0.5.
-  const double rows[4][3] = {{-0.5, -0.5, 1.5},   // ok, ok
-                             {0.5, -0.5, 1.5},    // pitch (1.5 > 1), ok
-                             {-0.5, 0.5, 1.0},    // ok, rc (1 > 0.5)
-                             {0.5, 0.5, 2.5}};    // both
+  const double rows[4][3] = {{-0.5, -0.5, 1.5},  // ok, ok
+                             {0.5, -0.5, 1.5},   // pitch (1.5 > 1), ok
+                             {-0.5, 0.5, 1.0},   // ok, rc (1 > 0.5)
+                             {0.5, 0.5, 2.5}};   // both
   for (const auto& r : rows) {
     states.pitch.push_back(r[0]);
     states.curvature.push_back(r[1]);
@@ -193,15 +221,17 @@ TEST(DrivingLogSimulator, TheAvoidedRegionStaysEmptyAndTheRestIsFast) {
   EXPECT_EQ(log.samples.size(), 9001u);
   EXPECT_EQ(simulateDrivingLog(options).samples.back().x, log.samples.back().x);  // deterministic
   const DrivingStates states = drivingStates(log, "simulated");
-  const RollCurvatureSpeedTable table =
-      dataRollCurvatureTable(states, defaultRollEdges(), defaultCurvatureEdges(), DataTableOptions{});
+  const RollCurvatureSpeedTable table = dataRollCurvatureTable(
+      states, defaultRollEdges(), defaultCurvatureEdges(), DataTableOptions{});
   const BinEdges& roll = table.rollEdges();
   const BinEdges& curvature = table.curvatureEdges();
   int avoided_filled = 0, straight_filled = 0;
   for (int i = 0; i < roll.binCount(); ++i) {
     for (int j = 0; j < curvature.binCount(); ++j) {
-      const double r_lo = roll.edges()[static_cast<std::size_t>(i)], r_hi = roll.edges()[static_cast<std::size_t>(i) + 1];
-      const double k_lo = curvature.edges()[static_cast<std::size_t>(j)], k_hi = curvature.edges()[static_cast<std::size_t>(j) + 1];
+      const double r_lo = roll.edges()[static_cast<std::size_t>(i)],
+                   r_hi = roll.edges()[static_cast<std::size_t>(i) + 1];
+      const double k_lo = curvature.edges()[static_cast<std::size_t>(j)],
+                   k_hi = curvature.edges()[static_cast<std::size_t>(j) + 1];
       // Entirely inside the avoided region: roll beyond 0.1 on the turn's side, |kappa| > 0.4.
       const bool avoided = (k_lo >= 0.4 && r_lo >= 0.1) || (k_hi <= -0.4 && r_hi <= -0.1);
       if (avoided) avoided_filled += table.vMax()(i, j) > 0.0;
@@ -220,11 +250,13 @@ TEST(DataTables, DrivingStatesNeedTheirColumns) {
   Trajectory log;
   log.samples.push_back(TrajectorySample::unknown());
   log.has_column[static_cast<std::size_t>(TrajectoryColumn::kX)] = true;
-  EXPECT_THAT(errorOf([&] { drivingStates(log, "drive.csv"); }), HasSubstr("drive.csv: needs a 'roll' column"));
+  EXPECT_THAT(errorOf([&] { drivingStates(log, "drive.csv"); }),
+              HasSubstr("drive.csv: needs a 'roll' column"));
   log.has_column.fill(true);
   log.has_column[static_cast<std::size_t>(TrajectoryColumn::kCurvature)] = false;
   log.has_column[static_cast<std::size_t>(TrajectoryColumn::kOmega)] = false;
-  EXPECT_THAT(errorOf([&] { drivingStates(log, "drive.csv"); }), HasSubstr("'curvature' or an 'omega'"));
+  EXPECT_THAT(errorOf([&] { drivingStates(log, "drive.csv"); }),
+              HasSubstr("'curvature' or an 'omega'"));
 }
 
 }  // namespace

@@ -58,7 +58,8 @@ TEST(RoverKinematics, RatesAndJacobiansMatchFiniteDifferences) {
   const RockerBogieAttitudeModel model(surface, RockerBogieGeometry{}, precise);
   const RoverKinematics kinematics(model);
   AttitudeWorkspace workspace;
-  const Eigen::Matrix<double, 5, 1> state = (Eigen::Matrix<double, 5, 1>() << 11.3, 9.7, 0.8, 0.7, 0.25).finished();
+  const Eigen::Matrix<double, 5, 1> state =
+      (Eigen::Matrix<double, 5, 1>() << 11.3, 9.7, 0.8, 0.7, 0.25).finished();
   const Eigen::Vector2d control(0.3, -0.1);
   RoverStateSpaceRates rates;
   ASSERT_EQ(kinematics.stateSpaceRates(state, control, workspace, rates), AttitudeStatus::kOk);
@@ -102,12 +103,18 @@ TEST(RoverIntegrator, ConstantControlsOnFlatGroundGiveTheExactArc) {
       start.y() - v / omega * (std::cos(heading0 + omega * duration) - std::cos(heading0)),
       heading0 + omega * duration);
   const PolynomialControls controls({v}, {omega});
-  EXPECT_LT((integrateTo(kinematics, cvodes(1e-13), start, controls, duration) - exact).norm(), 1e-9);
+  EXPECT_LT((integrateTo(kinematics, cvodes(1e-13), start, controls, duration) - exact).norm(),
+            1e-9);
   EXPECT_LT((integrateTo(kinematics, fixedStep(IntegrationMethod::kRk4, 1e-3), start, controls,
-                         duration) - exact).norm(), 1e-9);
+                         duration) -
+             exact)
+                .norm(),
+            1e-9);
   // Explicit Euler is first order: 1e-4 s steps leave an error of order 1e-4 m over 10 s.
   const double euler_error = (integrateTo(kinematics, fixedStep(IntegrationMethod::kEuler, 1e-4),
-                                          start, controls, duration) - exact).norm();
+                                          start, controls, duration) -
+                              exact)
+                                 .norm();
   EXPECT_LT(euler_error, 1e-3);
   EXPECT_GT(euler_error, 1e-6);
 }
@@ -120,9 +127,12 @@ TEST(RoverIntegrator, TheThreeMethodsAgreeOnRoughTerrain) {
   const PolynomialControls controls({0.5, 0.05}, {0.2, -0.03});
   const Eigen::Vector3d start(8.0, 18.0, 0.3);
   const Eigen::Vector3d reference = integrateTo(kinematics, cvodes(1e-11), start, controls, 8.0);
-  const Eigen::Vector3d cvodes_default = integrateTo(kinematics, IntegratorOptions{}, start, controls, 8.0);
-  const Eigen::Vector3d rk4 = integrateTo(kinematics, fixedStep(IntegrationMethod::kRk4, 0.01), start, controls, 8.0);
-  const Eigen::Vector3d euler = integrateTo(kinematics, fixedStep(IntegrationMethod::kEuler, 0.001), start, controls, 8.0);
+  const Eigen::Vector3d cvodes_default =
+      integrateTo(kinematics, IntegratorOptions{}, start, controls, 8.0);
+  const Eigen::Vector3d rk4 =
+      integrateTo(kinematics, fixedStep(IntegrationMethod::kRk4, 0.01), start, controls, 8.0);
+  const Eigen::Vector3d euler =
+      integrateTo(kinematics, fixedStep(IntegrationMethod::kEuler, 0.001), start, controls, 8.0);
   EXPECT_LT((cvodes_default - reference).norm(), 1e-6);  // rtol 1e-8
   EXPECT_LT((rk4 - reference).norm(), 1e-5);
   EXPECT_LT((euler - reference).norm(), 1e-2);
@@ -147,7 +157,8 @@ Eigen::MatrixXd finiteDifferenceSensitivity(const RoverKinematics& kinematics,
     plus.setParameters(qp);
     minus.setParameters(qm);
     fd.col(i) = (integrateTo(kinematics, plain, start, plus, duration) -
-                 integrateTo(kinematics, plain, start, minus, duration)) / (2 * h);
+                 integrateTo(kinematics, plain, start, minus, duration)) /
+                (2 * h);
   }
   return fd;
 }
@@ -166,18 +177,22 @@ TEST(RoverIntegrator, SensitivitiesMatchFiniteDifferences) {
     const RoverKinematics kinematics(*model);
     IntegratorOptions controlled = cvodes(1e-11);
     controlled.sensitivity_error_control = true;
-    for (IntegratorOptions options : {cvodes(1e-11), controlled, fixedStep(IntegrationMethod::kRk4, 0.01),
-                                      fixedStep(IntegrationMethod::kEuler, 0.01)}) {
+    for (IntegratorOptions options :
+         {cvodes(1e-11), controlled, fixedStep(IntegrationMethod::kRk4, 0.01),
+          fixedStep(IntegrationMethod::kEuler, 0.01)}) {
       options.sensitivities = true;
       RoverIntegrator integrator(kinematics, options);
       IntegrationResult result;
       integrator.integrate(start, controls, 6.0, {}, result);
       ASSERT_EQ(result.status, IntegrationStatus::kOk) << result.message;
-      const Eigen::MatrixXd fd = finiteDifferenceSensitivity(kinematics, options, start, controls, 6.0, 1e-5);
+      const Eigen::MatrixXd fd =
+          finiteDifferenceSensitivity(kinematics, options, start, controls, 6.0, 1e-5);
       const double relative = (result.sensitivity - fd).norm() / fd.norm();
       EXPECT_LT(relative, 1e-5) << model->name() << " " << integrationMethodName(options.method)
                                 << (options.sensitivity_error_control ? " (error control)" : "")
-                                << "\nsensitivity\n" << result.sensitivity << "\nfd\n" << fd;
+                                << "\nsensitivity\n"
+                                << result.sensitivity << "\nfd\n"
+                                << fd;
     }
   }
 }
@@ -188,7 +203,8 @@ TEST(RoverIntegrator, SamplesAtRequestedTimes) {
   const PointAttitudeModel model(surface);
   const RoverKinematics kinematics(model);
   const PolynomialControls controls({0.8}, {0.1});
-  for (const IntegratorOptions& options : {cvodes(1e-10), fixedStep(IntegrationMethod::kRk4, 0.01)}) {
+  for (const IntegratorOptions& options :
+       {cvodes(1e-10), fixedStep(IntegrationMethod::kRk4, 0.01)}) {
     RoverIntegrator integrator(kinematics, options);
     IntegrationResult result;
     const std::vector<double> times = uniformSampleTimes(5.0, 0.25);
@@ -214,7 +230,8 @@ TEST(RoverIntegrator, FailuresAreStatusesWithReasons) {
     RoverIntegrator integrator(kinematics, options);
     IntegrationResult result;
     integrator.integrate({2.0, 8.0, M_PI}, west, 10.0, {}, result);  // drives off the west edge
-    EXPECT_EQ(result.status, IntegrationStatus::kNoTerrain) << integrationMethodName(options.method);
+    EXPECT_EQ(result.status, IntegrationStatus::kNoTerrain)
+        << integrationMethodName(options.method);
     EXPECT_GT(result.t_reached, 1.5);
     EXPECT_LT(result.t_reached, 2.1);
     EXPECT_GT(result.final_state.x(), -0.02);  // the last accepted step: at most one step out

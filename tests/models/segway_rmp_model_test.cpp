@@ -24,13 +24,15 @@ ElevationMap ramp(double slope) {
   g.cell = 0.25;
   ElevationMap map(g);
   for (int r = 0; r < g.rows; ++r) {
-    for (int c = 0; c < g.cols; ++c) map.elevation()(r, c) = static_cast<float>(std::tan(slope) * (c + 0.5) * g.cell);
+    for (int c = 0; c < g.cols; ++c)
+      map.elevation()(r, c) = static_cast<float>(std::tan(slope) * (c + 0.5) * g.cell);
   }
   return map;
 }
 
 TEST(SegwayLookups, ShippedFilesMatchTheBuiltInDefaults) {
-  const SegwayLookups files = readSegwayLookups(kDataDir + "pitch_response.json", kDataDir + "slope_bounds.json");
+  const SegwayLookups files =
+      readSegwayLookups(kDataDir + "pitch_response.json", kDataDir + "slope_bounds.json");
   const SegwayLookups defaults = defaultSegwayLookups();
   for (double a = -2.5; a <= 2.5; a += 0.3) {
     for (double s = -0.4; s <= 0.4; s += 0.07) {
@@ -58,8 +60,10 @@ TEST(SegwayLookups, PaperFiguresAndPhysicalSigns) {
 }
 
 TEST(SegwayLookups, BadFilesAreInputErrors) {
-  const std::string bad = (std::filesystem::temp_directory_path() / "terratraj_segway_bad.json").string();
-  std::ofstream(bad) << R"({"kind": "segway_slope_bounds", "slope_rad": [0, -1], "v_max": [1, 1], "a_max": [1, 1]})";
+  const std::string bad =
+      (std::filesystem::temp_directory_path() / "terratraj_segway_bad.json").string();
+  std::ofstream(bad)
+      << R"({"kind": "segway_slope_bounds", "slope_rad": [0, -1], "v_max": [1, 1], "a_max": [1, 1]})";
   try {
     readSegwayLookups(kDataDir + "pitch_response.json", bad);
     FAIL();

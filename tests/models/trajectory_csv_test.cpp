@@ -37,7 +37,8 @@ TEST(TrajectoryCsv, WritesTheContractHeaderAndReadsItBack) {
   trajectory.samples[2].roll = std::nan("");
   std::ostringstream out;
   writeTrajectoryCsv(trajectory, out);
-  EXPECT_EQ(out.str().substr(0, out.str().find('\n')), "t,x,y,z,heading,roll,pitch,v,omega,curvature");
+  EXPECT_EQ(out.str().substr(0, out.str().find('\n')),
+            "t,x,y,z,heading,roll,pitch,v,omega,curvature");
   const Trajectory back = read(out.str());
   ASSERT_EQ(back.samples.size(), 5u);
   for (std::size_t c = 0; c < kTrajectoryColumnCount; ++c) EXPECT_TRUE(back.has_column[c]);
@@ -65,7 +66,8 @@ TEST(TrajectoryCsv, BadInputNamesTheLineAndColumn) {
   EXPECT_THAT(readError("t,x\n0,1\n"), HasSubstr("must name the columns x and y"));
   EXPECT_THAT(readError("x,y,x\n0,1,2\n"), HasSubstr("column 'x' appears twice"));
   EXPECT_THAT(readError("x,y\n0,1\n0,1,2\n"), HasSubstr("traj.csv:3: expected 2 fields, got 3"));
-  EXPECT_THAT(readError("x,y\n0,abc\n"), HasSubstr("traj.csv:2: column y: 'abc' is not a finite number"));
+  EXPECT_THAT(readError("x,y\n0,abc\n"),
+              HasSubstr("traj.csv:2: column y: 'abc' is not a finite number"));
   EXPECT_THAT(readError("x,y\nnan,1\n"), HasSubstr("column x: 'nan' is not a finite number"));
   EXPECT_THAT(readError("x,y,v\n0,1,inf\n"), HasSubstr("column v: 'inf'"));
   EXPECT_THAT(readError("x,y\n0,\n"), HasSubstr("column y: ''"));

@@ -67,7 +67,8 @@ TEST(LethalLayer, MarksCellsSteeperThanTheLimit) {
   // A ramp of 20 degrees along x on the east half, flat on the west half.
   ElevationMap map(geometry(6, 12, 1.0));
   for (int r = 0; r < 6; ++r) {
-    for (int c = 6; c < 12; ++c) map.elevation()(r, c) = static_cast<float>(std::tan(0.349) * (c - 5));
+    for (int c = 6; c < 12; ++c)
+      map.elevation()(r, c) = static_cast<float>(std::tan(0.349) * (c - 5));
   }
   const std::size_t marked = markLethalBySlope(map, 15.0 * M_PI / 180.0);
   EXPECT_GT(marked, 0u);

@@ -31,7 +31,8 @@ class RasterIoTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("terratraj_raster_io_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("terratraj_raster_io_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     GDALAllRegister();
@@ -50,8 +51,9 @@ class RasterIoTest : public ::testing::Test {
     GDALRasterBand* band = dataset->GetRasterBand(1);
     if (no_data) band->SetNoDataValue(*no_data);
     std::vector<double> copy = values;
-    EXPECT_EQ(band->RasterIO(GF_Write, 0, 0, cols, rows, copy.data(), cols, rows, GDT_Float64, 0, 0),
-              CE_None);
+    EXPECT_EQ(
+        band->RasterIO(GF_Write, 0, 0, cols, rows, copy.data(), cols, rows, GDT_Float64, 0, 0),
+        CE_None);
     GDALDriver* out = GetGDALDriverManager()->GetDriverByName(driver);
     const fs::path file = path(name);
     GDALDatasetUniquePtr written(
@@ -194,15 +196,16 @@ TEST_F(RasterIoTest, BadFilesGiveClearErrors) {
 TEST_F(RasterIoTest, RejectsRastersWithoutValidData) {
   const std::array<double, 6> gt{0, 1, 0, 4, 0, -1};
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const fs::path all_no_data =
-      writeRaster("empty.tif", "GTiff", 4, 4, std::vector<double>(16, -9999.0), GDT_Float32, gt, -9999.0);
+  const fs::path all_no_data = writeRaster(
+      "empty.tif", "GTiff", 4, 4, std::vector<double>(16, -9999.0), GDT_Float32, gt, -9999.0);
   EXPECT_THAT(loadError(all_no_data), HasSubstr("no valid height"));
   std::vector<double> with_nan(16, 1.0);
   with_nan[5] = nan;
   const fs::path nan_file = writeRaster("nan.tif", "GTiff", 4, 4, with_nan, GDT_Float32, gt);
   EXPECT_THAT(loadError(nan_file), HasSubstr("is not a finite number"));
   // Declared as the no-data value, NaN is fine.
-  const fs::path nan_no_data = writeRaster("nan_nd.tif", "GTiff", 4, 4, with_nan, GDT_Float32, gt, nan);
+  const fs::path nan_no_data =
+      writeRaster("nan_nd.tif", "GTiff", 4, 4, with_nan, GDT_Float32, gt, nan);
   EXPECT_TRUE(loadElevationMap(nan_no_data).isNoData({2, 1}));
   std::vector<double> with_inf(16, 1.0);
   with_inf[0] = std::numeric_limits<double>::infinity();
@@ -250,7 +253,8 @@ TEST_F(RasterIoTest, TerrainSourceCombinesHeightsAndObstacles) {
   // Lethal raster of the same grid as the gully: one lethal cell in GDAL row 0, column 2.
   std::vector<double> lethal(43 * 89, 0.0);
   lethal[2] = 1.0;
-  const fs::path lethal_file = writeRaster("lethal.tif", "GTiff", 89, 43, lethal, GDT_Byte, std::nullopt);
+  const fs::path lethal_file =
+      writeRaster("lethal.tif", "GTiff", 89, 43, lethal, GDT_Byte, std::nullopt);
   TerrainSource source;
   source.file = sharedData("west_bijou_gully.asc");
   source.obstacles.file = lethal_file;
@@ -267,7 +271,8 @@ TEST_F(RasterIoTest, TerrainSourceCombinesHeightsAndObstacles) {
   TerrainSource generated;
   generated.generate = GeneratorOptions{TerrainKind::kRamp, 10, 10, 1.0, 1};
   generated.raster.z_scale = 2.0;
-  EXPECT_NEAR(loadTerrain(generated).elevation()(0, 1), 2.0 * std::tan(10 * M_PI / 180) * 1.5, 1e-5);
+  EXPECT_NEAR(loadTerrain(generated).elevation()(0, 1), 2.0 * std::tan(10 * M_PI / 180) * 1.5,
+              1e-5);
 }
 
 }  // namespace

@@ -46,11 +46,10 @@ TEST(TangentPlanePatch, RotationIsYawPitchRollProduct) {
   const ElevationMap map = testing::smoothMap(30, 30, 0.5);
   const TerrainSurface surface(map, Interpolation::kBicubic);
   const TangentPlanePatch patch = *TangentPlanePatch::at(surface, {4.2, 9.9}, 0.8);
-  const Eigen::Matrix3d expected =
-      (Eigen::AngleAxisd(patch.heading(), Eigen::Vector3d::UnitZ()) *
-       Eigen::AngleAxisd(-patch.pitch(), Eigen::Vector3d::UnitY()) *
-       Eigen::AngleAxisd(patch.roll(), Eigen::Vector3d::UnitX()))
-          .toRotationMatrix();
+  const Eigen::Matrix3d expected = (Eigen::AngleAxisd(patch.heading(), Eigen::Vector3d::UnitZ()) *
+                                    Eigen::AngleAxisd(-patch.pitch(), Eigen::Vector3d::UnitY()) *
+                                    Eigen::AngleAxisd(patch.roll(), Eigen::Vector3d::UnitX()))
+                                       .toRotationMatrix();
   EXPECT_TRUE(patch.rotation().isApprox(expected, 1e-12));
 }
 
@@ -69,7 +68,8 @@ TEST(TangentPlanePatch, PointsStayOnAPlanarSurfaceAndTransformsCompose) {
   const Eigen::Vector3d in_first(end.u, end.w, 0.0);
   EXPECT_LT((first.transformTo(second) * in_first).norm(), 1e-12);
   // On one plane the motion direction becomes the new T.
-  const Eigen::Vector3d direction = std::cos(0.2) * first.tangent() + std::sin(0.2) * first.lateral();
+  const Eigen::Vector3d direction =
+      std::cos(0.2) * first.tangent() + std::sin(0.2) * first.lateral();
   EXPECT_TRUE(second.tangent().isApprox(direction, 1e-12));
 }
 

@@ -69,15 +69,18 @@ TEST(TerrainGenerator, SameSeedSameMapOtherSeedOtherMap) {
 }
 
 TEST(TerrainGenerator, ShapesAreWhatTheirNamesSay) {
-  const TerrainStatistics flat = computeTerrainStatistics(generateTerrain(options(TerrainKind::kFlat)));
+  const TerrainStatistics flat =
+      computeTerrainStatistics(generateTerrain(options(TerrainKind::kFlat)));
   EXPECT_EQ(flat.max_height, 0.0);
-  const TerrainStatistics ramp = computeTerrainStatistics(generateTerrain(options(TerrainKind::kRamp)));
+  const TerrainStatistics ramp =
+      computeTerrainStatistics(generateTerrain(options(TerrainKind::kRamp)));
   EXPECT_NEAR(ramp.max_slope, 10.0 * M_PI / 180.0, 1e-4);
   EXPECT_NEAR(ramp.mean_slope, 10.0 * M_PI / 180.0, 1e-4);
   const ElevationMap hill = generateTerrain(options(TerrainKind::kHill));
   EXPECT_GT(hill.elevation()(64, 64), 1.0f);  // peak in the middle
   EXPECT_LT(hill.elevation()(2, 2), 0.01f);
-  const TerrainStatistics hills = computeTerrainStatistics(generateTerrain(options(TerrainKind::kHills, 256)));
+  const TerrainStatistics hills =
+      computeTerrainStatistics(generateTerrain(options(TerrainKind::kHills, 256)));
   EXPECT_LT(hills.min_height, -0.3);  // valleys
   EXPECT_GT(hills.max_height, 0.3);   // hills
   EXPECT_GT(hills.p95_slope, 5.0 * M_PI / 180.0);
@@ -85,8 +88,8 @@ TEST(TerrainGenerator, ShapesAreWhatTheirNamesSay) {
 }
 
 TEST(TerrainGenerator, ObstacleKindsHaveLethalCellsButKeepStartAndGoalFree) {
-  for (const TerrainKind kind :
-       {TerrainKind::kCorridor, TerrainKind::kObstacles, TerrainKind::kDeadEnd, TerrainKind::kForest}) {
+  for (const TerrainKind kind : {TerrainKind::kCorridor, TerrainKind::kObstacles,
+                                 TerrainKind::kDeadEnd, TerrainKind::kForest}) {
     for (std::uint64_t seed = 1; seed <= 5; ++seed) {
       const ElevationMap map = generateTerrain(options(kind, 200, seed));
       const std::size_t lethal = countLethalCells(map);

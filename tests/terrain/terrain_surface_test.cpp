@@ -19,10 +19,12 @@ constexpr Interpolation kSmoothMethods[] = {Interpolation::kBilinear, Interpolat
 // Central finite difference of the surface's height.
 Eigen::Vector2d finiteDifferenceGradient(const TerrainSurface& surface, const Eigen::Vector2d& p,
                                          double h) {
-  const double dx = (*surface.height(p + Eigen::Vector2d(h, 0)) -
-                     *surface.height(p - Eigen::Vector2d(h, 0))) / (2 * h);
-  const double dy = (*surface.height(p + Eigen::Vector2d(0, h)) -
-                     *surface.height(p - Eigen::Vector2d(0, h))) / (2 * h);
+  const double dx =
+      (*surface.height(p + Eigen::Vector2d(h, 0)) - *surface.height(p - Eigen::Vector2d(h, 0))) /
+      (2 * h);
+  const double dy =
+      (*surface.height(p + Eigen::Vector2d(0, h)) - *surface.height(p - Eigen::Vector2d(0, h))) /
+      (2 * h);
   return {dx, dy};
 }
 
@@ -41,8 +43,10 @@ TEST(TerrainSurface, AnalyticGradientMatchesFiniteDifferencesEverywhere) {
       if (fx < 0.01 || fx > 0.99 || fy < 0.01 || fy > 0.99) continue;
       const HeightSample s = *surface.sample(p);
       const Eigen::Vector2d fd = finiteDifferenceGradient(surface, p, 1e-6);
-      EXPECT_NEAR(s.gradient.x(), fd.x(), 1e-6) << interpolationName(method) << " at " << p.transpose();
-      EXPECT_NEAR(s.gradient.y(), fd.y(), 1e-6) << interpolationName(method) << " at " << p.transpose();
+      EXPECT_NEAR(s.gradient.x(), fd.x(), 1e-6)
+          << interpolationName(method) << " at " << p.transpose();
+      EXPECT_NEAR(s.gradient.y(), fd.y(), 1e-6)
+          << interpolationName(method) << " at " << p.transpose();
     }
   }
 }
@@ -88,7 +92,8 @@ TEST(TerrainSurface, InterpolatesSamplesExactlyAtCellCentres) {
     const TerrainSurface surface(map, method);
     for (int r = 0; r < 12; ++r) {
       for (int c = 0; c < 9; ++c) {
-        EXPECT_NEAR(*surface.height(map.geometry().cellCenter({r, c})), map.elevation()(r, c), 1e-6);
+        EXPECT_NEAR(*surface.height(map.geometry().cellCenter({r, c})), map.elevation()(r, c),
+                    1e-6);
       }
     }
   }
@@ -126,7 +131,8 @@ TEST(TerrainSurface, NearestGradientIsTheGridsCentralDifference) {
   const ElevationMap map = smoothMap(10, 10, 0.5);
   const TerrainSurface nearest(map, Interpolation::kNearest);
   const CellIndex cell{4, 6};
-  const HeightSample s = *nearest.sample(map.geometry().cellCenter(cell) + Eigen::Vector2d(0.1, -0.1));
+  const HeightSample s =
+      *nearest.sample(map.geometry().cellCenter(cell) + Eigen::Vector2d(0.1, -0.1));
   const GridLayer& z = map.elevation();
   EXPECT_DOUBLE_EQ(s.height, z(cell));
   EXPECT_NEAR(s.gradient.x(), (z(4, 7) - z(4, 5)) / 1.0, 1e-12);
@@ -139,9 +145,9 @@ TEST(TerrainSurface, DefinedOnTheWholeExtentAndNothingOutside) {
        {Interpolation::kNearest, Interpolation::kBilinear, Interpolation::kBicubic}) {
     const TerrainSurface surface(map, method);
     // Corners and edges of the extent.
-    for (const Eigen::Vector2d& p : {Eigen::Vector2d(0, 0), Eigen::Vector2d(6, 8),
-                                    Eigen::Vector2d(0, 8), Eigen::Vector2d(6, 0),
-                                    Eigen::Vector2d(0.2, 4.0), Eigen::Vector2d(5.9, 7.95)}) {
+    for (const Eigen::Vector2d& p :
+         {Eigen::Vector2d(0, 0), Eigen::Vector2d(6, 8), Eigen::Vector2d(0, 8),
+          Eigen::Vector2d(6, 0), Eigen::Vector2d(0.2, 4.0), Eigen::Vector2d(5.9, 7.95)}) {
       EXPECT_TRUE(surface.sample(p).has_value()) << interpolationName(method) << p.transpose();
     }
     const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -8,10 +8,10 @@ namespace terratraj::apps {
 /// Exit statuses of every command (../shared/spec/interface.md, "Exit status"), plus one for
 /// bugs, which the contract does not foresee.
 enum ExitStatus : int {
-  kExitSuccess = 0,   ///< done
-  kExitNotSolved = 1, ///< the problem was read but not solved; the report is still printed
-  kExitBadInput = 2,  ///< bad input or usage; a message names the file, key or value at fault
-  kExitInternal = 3,  ///< an internal error (a bug): the message says what failed
+  kExitSuccess = 0,    ///< done
+  kExitNotSolved = 1,  ///< the problem was read but not solved; the report is still printed
+  kExitBadInput = 2,   ///< bad input or usage; a message names the file, key or value at fault
+  kExitInternal = 3,   ///< an internal error (a bug): the message says what failed
 };
 
 /// Runs one command line. Results go to `out` (with --json, exactly one JSON object), messages

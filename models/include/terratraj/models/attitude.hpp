@@ -25,9 +25,9 @@ struct Attitude {
 /// Outcome of an attitude computation. Never an exception: models are called inside
 /// integrator and optimiser callbacks.
 enum class AttitudeStatus {
-  kOk,          ///< attitude and Jacobian are valid
-  kNoTerrain,   ///< a contact point is off the map or over no data
-  kNoContact,   ///< the suspension cannot rest on the terrain there (e.g. a cliff): no solution
+  kOk,         ///< attitude and Jacobian are valid
+  kNoTerrain,  ///< a contact point is off the map or over no data
+  kNoContact,  ///< the suspension cannot rest on the terrain there (e.g. a cliff): no solution
 };
 
 /// Text for an AttitudeStatus ("ok", "no_terrain", "no_contact").

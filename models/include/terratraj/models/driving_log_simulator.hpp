@@ -24,20 +24,20 @@ namespace terratraj::models {
 /// The simulated driver and its course. Units SI.
 struct DrivingLogOptions {
   std::uint64_t seed = 1;
-  double duration = 600.0;          ///< [s]
-  double sample_period = 0.1;       ///< [s] one row per period
-  int terrain_size = 256;           ///< cells per side of the generated hills
-  double terrain_cell = 0.5;        ///< [m]
-  double speed_cap = 8.0;           ///< [m/s]
+  double duration = 600.0;            ///< [s]
+  double sample_period = 0.1;         ///< [s] one row per period
+  int terrain_size = 256;             ///< cells per side of the generated hills
+  double terrain_cell = 0.5;          ///< [m]
+  double speed_cap = 8.0;             ///< [m/s]
   double lateral_acceleration = 2.0;  ///< [m/s^2] comfort limit in turns
-  double downhill_slowdown = 0.6;   ///< fraction of speed given up at 0.4 rad nose down
-  double acceleration = 1.5;        ///< [m/s^2] |dv/dt| limit
-  double noise = 0.3;               ///< speed below comfort: up to this fraction
-  double max_curvature = 0.8;       ///< [1/m]
-  double curvature_rate = 0.4;      ///< [1/(m s)]
-  double steer_period = 2.0;        ///< [s]
-  double avoid_roll = 0.1;          ///< [rad]
-  double avoid_curvature = 0.4;     ///< [1/m]
+  double downhill_slowdown = 0.6;     ///< fraction of speed given up at 0.4 rad nose down
+  double acceleration = 1.5;          ///< [m/s^2] |dv/dt| limit
+  double noise = 0.3;                 ///< speed below comfort: up to this fraction
+  double max_curvature = 0.8;         ///< [1/m]
+  double curvature_rate = 0.4;        ///< [1/(m s)]
+  double steer_period = 2.0;          ///< [s]
+  double avoid_roll = 0.1;            ///< [rad]
+  double avoid_curvature = 0.4;       ///< [1/m]
 };
 
 /// Simulates a driving log. Throws InputError for invalid options.

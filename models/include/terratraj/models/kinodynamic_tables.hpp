@@ -21,11 +21,11 @@ BinEdges uniformEdges(double lo, double hi, int bins, const std::string& what);
 /// The vehicle in 003_... appendix I. Lengths [m], g [m/s^2], speeds [m/s].
 struct PhysicsTableParameters {
   double gravity = 9.81;
-  double half_track = 0.6;         ///< lateral offset of the wheels from the centre line
-  double cog_height = 0.8;         ///< COG_z
-  double friction = 0.6;           ///< C_friction
-  double vehicle_length = 2.5;     ///< braking distance d_brake = 2 vehicle lengths
-  double speed_cap = 12.0;         ///< every limit is capped here (003_... used 12 m/s)
+  double half_track = 0.6;      ///< lateral offset of the wheels from the centre line
+  double cog_height = 0.8;      ///< COG_z
+  double friction = 0.6;        ///< C_friction
+  double vehicle_length = 2.5;  ///< braking distance d_brake = 2 vehicle lengths
+  double speed_cap = 12.0;      ///< every limit is capped here (003_... used 12 m/s)
 };
 
 /// Eq. 1 with the roll dependence of fig. 6a: tipping about the outer wheels of a turn, the

@@ -29,4 +29,10 @@ struct PlaneAttitude {
 };
 PlaneAttitude planeAttitude(double p, double q);
 
+/// Fills `result` for a rigid vehicle on a plane of height z and slopes (p, q), given their
+/// derivatives by (x, y, heading); no suspension, no iterations.
+void setPlaneAttitude(double z, const Eigen::RowVector3d& dz, double p,
+                      const Eigen::RowVector3d& dp, double q, const Eigen::RowVector3d& dq,
+                      AttitudeResult& result);
+
 }  // namespace terratraj::models

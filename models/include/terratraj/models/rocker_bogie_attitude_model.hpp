@@ -26,20 +26,20 @@ namespace terratraj::models {
 
 /// Link geometry [m]. 2-D vectors are (forward, up) offsets in the plane of a rocker.
 struct RockerBogieGeometry {
-  double half_track = 0.20;                                 ///< pivot's lateral offset, > 0
-  double wheel_radius = 0.065;                              ///< >= 0
-  Eigen::Vector2d rear_wheel = {-0.25, -0.12};              ///< rear wheel centre, rocker frame
-  Eigen::Vector2d bogie_pivot = {0.10, -0.06};              ///< bogie pivot, rocker frame
-  Eigen::Vector2d front_wheel = {0.15, -0.06};              ///< front wheel centre, bogie frame
-  Eigen::Vector2d middle_wheel = {-0.10, -0.06};            ///< middle wheel centre, bogie frame
+  double half_track = 0.20;                       ///< pivot's lateral offset, > 0
+  double wheel_radius = 0.065;                    ///< >= 0
+  Eigen::Vector2d rear_wheel = {-0.25, -0.12};    ///< rear wheel centre, rocker frame
+  Eigen::Vector2d bogie_pivot = {0.10, -0.06};    ///< bogie pivot, rocker frame
+  Eigen::Vector2d front_wheel = {0.15, -0.06};    ///< front wheel centre, bogie frame
+  Eigen::Vector2d middle_wheel = {-0.10, -0.06};  ///< middle wheel centre, bogie frame
 };
 
 /// Newton settings.
 struct RockerBogieSolverOptions {
-  double tolerance = 1e-6;     ///< largest wheel contact error accepted [m], > 0
-  int max_iterations = 25;     ///< per attempt (warm, then cold), >= 1
+  double tolerance = 1e-6;       ///< largest wheel contact error accepted [m], > 0
+  int max_iterations = 25;       ///< per attempt (warm, then cold), >= 1
   double max_joint_angle = 0.8;  ///< |rho|, |beta| beyond this [rad] = the suspension cannot reach
-  double max_tilt = 1.2;       ///< |roll|, |pitch| beyond this [rad] = no resting attitude
+  double max_tilt = 1.2;         ///< |roll|, |pitch| beyond this [rad] = no resting attitude
 };
 
 /// Attitude and suspension configuration of a rocker-bogie rover.

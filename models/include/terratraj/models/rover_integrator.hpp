@@ -51,10 +51,10 @@ struct IntegratorOptions {
 /// How an integration ended.
 enum class IntegrationStatus {
   kOk,
-  kNoTerrain,       ///< the vehicle left the map or reached no-data cells
-  kNoContact,       ///< the suspension could not rest on the terrain
-  kSolverFailure,   ///< CVODES reported an error (message says which)
-  kInvalidInput,    ///< bad options, duration or sample times (message says which)
+  kNoTerrain,      ///< the vehicle left the map or reached no-data cells
+  kNoContact,      ///< the suspension could not rest on the terrain
+  kSolverFailure,  ///< CVODES reported an error (message says which)
+  kInvalidInput,   ///< bad options, duration or sample times (message says which)
 };
 
 /// The name of a status ("ok", "no_terrain", ...).
@@ -63,13 +63,13 @@ const char* integrationStatusName(IntegrationStatus status);
 /// What an integration produced.
 struct IntegrationResult {
   IntegrationStatus status = IntegrationStatus::kOk;
-  std::string message;                                  ///< empty when status is kOk
-  double t_reached = 0.0;                               ///< [s]
+  std::string message;                                    ///< empty when status is kOk
+  double t_reached = 0.0;                                 ///< [s]
   Eigen::Vector3d final_state = Eigen::Vector3d::Zero();  ///< (x, y, heading) at t_reached
-  Eigen::MatrixXd sensitivity;                          ///< 3 x parameterCount(), if requested
-  Trajectory samples;                                   ///< the states at the sample times
-  long steps = 0;                                       ///< steps taken
-  long rhs_evaluations = 0;                             ///< kinematics evaluations
+  Eigen::MatrixXd sensitivity;                            ///< 3 x parameterCount(), if requested
+  Trajectory samples;                                     ///< the states at the sample times
+  long steps = 0;                                         ///< steps taken
+  long rhs_evaluations = 0;                               ///< kinematics evaluations
 };
 
 /// Integrates rover kinematics. Not thread-safe: use one per thread.

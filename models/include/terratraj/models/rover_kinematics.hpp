@@ -19,10 +19,11 @@ namespace terratraj::models {
 
 /// Rates of the reduced state and their derivatives.
 struct RoverRates {
-  Eigen::Vector3d rate = Eigen::Vector3d::Zero();              ///< (x', y', heading')
-  Eigen::Matrix3d d_state = Eigen::Matrix3d::Zero();           ///< d rate / d (x, y, heading)
-  Eigen::Matrix<double, 3, 2> d_input = Eigen::Matrix<double, 3, 2>::Zero();  ///< d rate / d (v, omega)
-  AttitudeResult attitude;                                     ///< attitude at the state
+  Eigen::Vector3d rate = Eigen::Vector3d::Zero();     ///< (x', y', heading')
+  Eigen::Matrix3d d_state = Eigen::Matrix3d::Zero();  ///< d rate / d (x, y, heading)
+  Eigen::Matrix<double, 3, 2> d_input =
+      Eigen::Matrix<double, 3, 2>::Zero();  ///< d rate / d (v, omega)
+  AttitudeResult attitude;                  ///< attitude at the state
 };
 
 /// Rates of the state-space form and their derivatives.

@@ -49,7 +49,8 @@ class SegwaySlopeBounds {
   SegwaySlopeBounds() = default;
   /// Throws InputError unless slopes strictly increase (>= 2 points) and both bounds have one
   /// finite value >= 0 per slope.
-  SegwaySlopeBounds(std::vector<double> slopes, std::vector<double> v_max, std::vector<double> a_max);
+  SegwaySlopeBounds(std::vector<double> slopes, std::vector<double> v_max,
+                    std::vector<double> a_max);
   double speedLimit(double slope) const;
   double accelerationLimit(double slope) const;
   const std::vector<double>& slopes() const { return slopes_; }

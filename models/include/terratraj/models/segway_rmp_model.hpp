@@ -27,14 +27,14 @@ namespace terratraj::models {
 
 /// Limits of the RMP beyond its look-ups. Defaults from 001_...: 3.5 m/s, 2 m/s^2, 17 deg.
 struct SegwayLimits {
-  double v_max = 3.5;                ///< [m/s]
-  double a_max = 2.0;                ///< [m/s^2]
-  double kappa_max = 4.0;            ///< [1/m] curvature cap at low speed
-  double lateral_acceleration = 2.0; ///< [m/s^2] kappa_max(v) = min(kappa_max, this / v^2)
-  double sigma_max = 2.0;            ///< [1/(m s)] curvature rate
-  double pitch_max = 0.698;          ///< [rad] platform pitch (40 deg: the RMP falls beyond)
-  double roll_max = 0.35;            ///< [rad]
-  double max_slope = 0.2967;         ///< [rad] climbing limit (17 deg)
+  double v_max = 3.5;                 ///< [m/s]
+  double a_max = 2.0;                 ///< [m/s^2]
+  double kappa_max = 4.0;             ///< [1/m] curvature cap at low speed
+  double lateral_acceleration = 2.0;  ///< [m/s^2] kappa_max(v) = min(kappa_max, this / v^2)
+  double sigma_max = 2.0;             ///< [1/(m s)] curvature rate
+  double pitch_max = 0.698;           ///< [rad] platform pitch (40 deg: the RMP falls beyond)
+  double roll_max = 0.35;             ///< [rad]
+  double max_slope = 0.2967;          ///< [rad] climbing limit (17 deg)
 };
 
 /// A state of the RMP in the map frame.
@@ -67,8 +67,8 @@ struct SegwayPose {
 /// The Segway RMP on a terrain surface. Immutable; no allocation in its methods.
 class SegwayRmpModel {
  public:
-  SegwayRmpModel(const terrain::TerrainSurface& surface, SegwayLookups lookups = defaultSegwayLookups(),
-                 const SegwayLimits& limits = {});
+  SegwayRmpModel(const terrain::TerrainSurface& surface,
+                 SegwayLookups lookups = defaultSegwayLookups(), const SegwayLimits& limits = {});
 
   const SegwayLimits& limits() const { return limits_; }
   const SegwayLookups& lookups() const { return lookups_; }

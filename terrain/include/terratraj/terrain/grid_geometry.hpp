@@ -23,9 +23,9 @@ struct CellIndex {
 
 /// Size and placement of a raster. Value type; cheap to copy.
 struct GridGeometry {
-  int rows = 0;                                       ///< cells along y (north)
-  int cols = 0;                                       ///< cells along x (east)
-  double cell = 1.0;                                  ///< cell edge length [m], > 0
+  int rows = 0;                                            ///< cells along y (north)
+  int cols = 0;                                            ///< cells along x (east)
+  double cell = 1.0;                                       ///< cell edge length [m], > 0
   Eigen::Vector2d world_origin = Eigen::Vector2d::Zero();  ///< world (x, y) of the local origin [m]
 
   /// Number of cells, rows * cols.
@@ -39,7 +39,9 @@ struct GridGeometry {
     return static_cast<std::size_t>(c.row) * cols + c.col;
   }
   /// Whether a cell index lies on the grid.
-  bool isValid(CellIndex c) const { return c.row >= 0 && c.row < rows && c.col >= 0 && c.col < cols; }
+  bool isValid(CellIndex c) const {
+    return c.row >= 0 && c.row < rows && c.col >= 0 && c.col < cols;
+  }
   /// Whether a local point lies inside the raster's extent (borders included).
   bool contains(const Eigen::Vector2d& local) const {
     return local.x() >= 0.0 && local.y() >= 0.0 && local.x() <= width() && local.y() <= height();

@@ -11,10 +11,10 @@ namespace terratraj::terrain {
 
 /// One 8-connected set of lethal cells.
 struct ObstacleCluster {
-  std::vector<CellIndex> cells;                          ///< members, in flood-fill order
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();    ///< mean of the cell centres [m, local]
-  CellIndex min_cell;                                    ///< south-west corner of the bounding box
-  CellIndex max_cell;                                    ///< north-east corner of the bounding box
+  std::vector<CellIndex> cells;                        ///< members, in flood-fill order
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();  ///< mean of the cell centres [m, local]
+  CellIndex min_cell;                                  ///< south-west corner of the bounding box
+  CellIndex max_cell;                                  ///< north-east corner of the bounding box
 };
 
 /// The obstacle clusters of the map's "lethal" layer (none without one), ordered by their

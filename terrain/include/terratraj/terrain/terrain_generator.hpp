@@ -38,9 +38,9 @@ const char* terrainKindDescription(TerrainKind kind);
 /// What to generate.
 struct GeneratorOptions {
   TerrainKind kind = TerrainKind::kHills;
-  int rows = 256;        ///< cells along y, >= 2
-  int cols = 256;        ///< cells along x, >= 2
-  double cell = 0.25;    ///< cell size [m], > 0
+  int rows = 256;      ///< cells along y, >= 2
+  int cols = 256;      ///< cells along x, >= 2
+  double cell = 0.25;  ///< cell size [m], > 0
   std::uint64_t seed = 1;
 };
 

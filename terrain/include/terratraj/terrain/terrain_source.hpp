@@ -25,9 +25,9 @@ struct ObstacleSource {
 
 /// A terrain: exactly one of `file` and `generate`.
 struct TerrainSource {
-  std::optional<std::filesystem::path> file;    ///< an elevation raster GDAL reads
-  std::optional<GeneratorOptions> generate;     ///< or a generated terrain
-  RasterLoadOptions raster;                     ///< cell, z_scale, size limit for `file`
+  std::optional<std::filesystem::path> file;  ///< an elevation raster GDAL reads
+  std::optional<GeneratorOptions> generate;   ///< or a generated terrain
+  RasterLoadOptions raster;                   ///< cell, z_scale, size limit for `file`
   CoordinateFrame frame = CoordinateFrame::kLocal;
   ObstacleSource obstacles;
 };

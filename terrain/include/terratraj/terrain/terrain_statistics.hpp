@@ -14,12 +14,12 @@ struct TerrainStatistics {
   std::size_t no_data_cells = 0;  ///< cells without one (NaN)
   std::size_t lethal_cells = 0;   ///< non-zero cells of the "lethal" layer
   std::size_t obstacle_clusters = 0;
-  double min_height = 0.0;        ///< over valid cells
+  double min_height = 0.0;  ///< over valid cells
   double max_height = 0.0;
   double mean_height = 0.0;
-  double mean_slope = 0.0;        ///< over cells with a central-difference gradient
+  double mean_slope = 0.0;  ///< over cells with a central-difference gradient
   double max_slope = 0.0;
-  double p95_slope = 0.0;         ///< 95th percentile (nearest rank)
+  double p95_slope = 0.0;  ///< 95th percentile (nearest rank)
 };
 
 /// Computes the statistics of a map. Slopes come from cellGradient().
