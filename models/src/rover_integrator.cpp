@@ -60,9 +60,8 @@ TrajectorySample makeSample(double t, const Eigen::Vector3d& state, double v, do
           v, omega,     curvature};
 }
 
-bool validateRequest(const IntegratorOptions& options, double duration,
-                     const std::vector<double>& sample_times, IntegrationResult& result) {
-  (void)options;
+bool validateRequest(double duration, const std::vector<double>& sample_times,
+                     IntegrationResult& result) {
   std::string problem;
   if (!(duration >= 0.0) || !std::isfinite(duration)) {
     problem = "duration must be a finite number >= 0";
@@ -208,7 +207,7 @@ void RoverIntegrator::integrate(const Eigen::Vector3d& initial, const ControlPro
                                 IntegrationResult& result) {
   const int nq = controls.parameterCount();
   detail::prepareResult(initial, nq, options_.sensitivities, sample_times.size(), result);
-  if (!detail::validateRequest(options_, duration, sample_times, result)) return;
+  if (!detail::validateRequest(duration, sample_times, result)) return;
   workspace_.has_warm_start = false;
   if (options_.method == IntegrationMethod::kCvodes) {
     integrateCvodes(initial, controls, duration, sample_times, result);

@@ -87,9 +87,7 @@ std::string flagName(int flag) {
 class RoverIntegrator::CvodesSession {
  public:
   CvodesSession(const IntegratorOptions& options, int parameter_count)
-      : parameter_count_(parameter_count),
-        sensitivities_(options.sensitivities),
-        max_steps_(options.max_steps) {
+      : parameter_count_(parameter_count), max_steps_(options.max_steps) {
     ok_ = SUNContext_Create(nullptr, &context_) == 0;
     if (!ok_) return;
     y_ = N_VNew_Serial(3, context_);
@@ -97,16 +95,16 @@ class RoverIntegrator::CvodesSession {
     ok_ = y_ != nullptr && memory_ != nullptr;
     if (!ok_) return;
     N_VConst(0.0, y_);
+    // No CVodeSetMaxNumSteps: advance() takes one step per CVode call and enforces max_steps.
     ok_ = CVodeInit(memory_, roverRhs, 0.0, y_) == CV_SUCCESS &&
           CVodeSStolerances(memory_, options.relative_tolerance, options.absolute_tolerance) ==
               CV_SUCCESS &&
           CVodeSetUserData(memory_, &data_) == CV_SUCCESS &&
-          CVodeSetErrHandlerFn(memory_, recordCvodesError, &data_) == CV_SUCCESS &&
-          CVodeSetMaxNumSteps(memory_, options.max_steps) == CV_SUCCESS;
+          CVodeSetErrHandlerFn(memory_, recordCvodesError, &data_) == CV_SUCCESS;
     if (!ok_) return;
     solver_ = SUNNonlinSol_FixedPoint(y_, 0, context_);
     ok_ = solver_ != nullptr && CVodeSetNonlinearSolver(memory_, solver_) == CV_SUCCESS;
-    if (!ok_ || !sensitivities_ || parameter_count_ == 0) return;
+    if (!ok_ || !options.sensitivities || parameter_count_ == 0) return;
     ys_ = N_VCloneVectorArray(parameter_count_, y_);
     ok_ = ys_ != nullptr;
     if (!ok_) return;
@@ -140,7 +138,6 @@ class RoverIntegrator::CvodesSession {
 
   bool ok() const { return ok_; }
   int parameterCount() const { return parameter_count_; }
-  bool sensitivities() const { return sensitivities_; }
 
   void run(const RoverKinematics& kinematics, AttitudeWorkspace& workspace,
            const Eigen::Vector3d& initial, const ControlProfile& controls, double duration,
@@ -263,7 +260,6 @@ class RoverIntegrator::CvodesSession {
   }
 
   int parameter_count_;
-  bool sensitivities_;
   bool ok_ = false;
   SUNContext context_ = nullptr;
   N_Vector y_ = nullptr;

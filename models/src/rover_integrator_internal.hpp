@@ -15,8 +15,8 @@ IntegrationStatus fromAttitudeStatus(AttitudeStatus status);
 TrajectorySample makeSample(double t, const Eigen::Vector3d& state, double v, double omega,
                             const Attitude& attitude);
 /// Checks duration and sample times; on failure sets result's status and message.
-bool validateRequest(const IntegratorOptions& options, double duration,
-                     const std::vector<double>& sample_times, IntegrationResult& result);
+bool validateRequest(double duration, const std::vector<double>& sample_times,
+                     IntegrationResult& result);
 /// Resets result for a new integration (keeps its storage).
 void prepareResult(const Eigen::Vector3d& initial, int parameter_count, bool sensitivities,
                    std::size_t sample_count, IntegrationResult& result);
