@@ -18,9 +18,16 @@ namespace {
 struct CallbackData {
   const RoverKinematics* kinematics = nullptr;
   const ControlProfile* controls = nullptr;
+  const RunningIntegrand* integrand = nullptr;
   AttitudeWorkspace* workspace = nullptr;
   RoverRates rates;
+  double v = 0.0, omega = 0.0;
   Eigen::VectorXd dv_dq, domega_dq;
+  // The point `rates` was computed at: CVODES evaluates the state, sensitivity and quadrature
+  // right-hand sides at the same (t, y), and the attitude is the expensive part.
+  bool cached = false;
+  double cached_t = 0.0;
+  Eigen::Vector3d cached_y = Eigen::Vector3d::Zero();
   AttitudeStatus failure = AttitudeStatus::kOk;
   long evaluations = 0;
   std::array<char, 256> last_error{};  // CVODES's last error message (fixed size: no allocation)
@@ -35,18 +42,28 @@ void recordCvodesError(int error_code, const char* module, const char* function,
                 message);
 }
 
-int roverRhs(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
-  CallbackData& data = *static_cast<CallbackData*>(user_data);
+// Rates at (t, y) into data.rates (reused when the point is the one last evaluated).
+bool evaluateRates(CallbackData& data, realtype t, N_Vector y) {
   const Eigen::Map<const Eigen::Vector3d> state(N_VGetArrayPointer(y));
-  double v = 0.0, omega = 0.0;
-  data.controls->evaluate(t, v, omega, nullptr, nullptr);
+  if (data.cached && data.cached_t == t && data.cached_y == state) return true;
+  data.controls->evaluate(t, data.v, data.omega, nullptr, nullptr);
   ++data.evaluations;
   const AttitudeStatus status =
-      data.kinematics->rates(state, v, omega, *data.workspace, data.rates);
+      data.kinematics->rates(state, data.v, data.omega, *data.workspace, data.rates);
   if (status != AttitudeStatus::kOk) {
     data.failure = status;
-    return -1;  // unrecoverable: the vehicle cannot be placed there
+    data.cached = false;
+    return false;
   }
+  data.cached = true;
+  data.cached_t = t;
+  data.cached_y = state;
+  return true;
+}
+
+int roverRhs(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
+  CallbackData& data = *static_cast<CallbackData*>(user_data);
+  if (!evaluateRates(data, t, y)) return -1;  // unrecoverable: the vehicle cannot be placed there
   Eigen::Map<Eigen::Vector3d>(N_VGetArrayPointer(ydot)) = data.rates.rate;
   return 0;
 }
@@ -54,21 +71,40 @@ int roverRhs(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
 int roverSensitivityRhs(int ns, realtype t, N_Vector y, N_Vector /*ydot*/, N_Vector* ys,
                         N_Vector* ys_dot, void* user_data, N_Vector /*tmp1*/, N_Vector /*tmp2*/) {
   CallbackData& data = *static_cast<CallbackData*>(user_data);
-  const Eigen::Map<const Eigen::Vector3d> state(N_VGetArrayPointer(y));
+  if (!evaluateRates(data, t, y)) return -1;
   double v = 0.0, omega = 0.0;
   data.controls->evaluate(t, v, omega, data.dv_dq.data(), data.domega_dq.data());
-  ++data.evaluations;
-  const AttitudeStatus status =
-      data.kinematics->rates(state, v, omega, *data.workspace, data.rates);
-  if (status != AttitudeStatus::kOk) {
-    data.failure = status;
-    return -1;
-  }
   for (int i = 0; i < ns; ++i) {
     const Eigen::Map<const Eigen::Vector3d> s(N_VGetArrayPointer(ys[i]));
     Eigen::Map<Eigen::Vector3d>(N_VGetArrayPointer(ys_dot[i])) =
         data.rates.d_state * s + data.rates.d_input.col(0) * data.dv_dq(i) +
         data.rates.d_input.col(1) * data.domega_dq(i);
+  }
+  return 0;
+}
+
+int integrandRhs(realtype t, N_Vector y, N_Vector yq_dot, void* user_data) {
+  CallbackData& data = *static_cast<CallbackData*>(user_data);
+  if (!evaluateRates(data, t, y)) return -1;
+  N_VGetArrayPointer(yq_dot)[0] =
+      data.integrand->evaluate(t, data.rates, data.v, data.omega, nullptr, nullptr);
+  return 0;
+}
+
+int integrandSensitivityRhs(int ns, realtype t, N_Vector y, N_Vector* ys, N_Vector /*yq_dot*/,
+                            N_Vector* yqs_dot, void* user_data, N_Vector /*tmp*/,
+                            N_Vector /*tmp_q*/) {
+  CallbackData& data = *static_cast<CallbackData*>(user_data);
+  if (!evaluateRates(data, t, y)) return -1;
+  double v = 0.0, omega = 0.0;
+  data.controls->evaluate(t, v, omega, data.dv_dq.data(), data.domega_dq.data());
+  Eigen::Vector3d dl_dstate;
+  Eigen::Vector2d dl_dinput;
+  data.integrand->evaluate(t, data.rates, v, omega, &dl_dstate, &dl_dinput);
+  for (int i = 0; i < ns; ++i) {
+    const Eigen::Map<const Eigen::Vector3d> s(N_VGetArrayPointer(ys[i]));
+    N_VGetArrayPointer(yqs_dot[i])[0] = dl_dstate.dot(s) + dl_dinput(0) * data.dv_dq(i) +
+                                        dl_dinput(1) * data.domega_dq(i);
   }
   return 0;
 }
@@ -86,8 +122,8 @@ std::string flagName(int flag) {
 // re-created only when the number of sensitivity parameters changes.
 class RoverIntegrator::CvodesSession {
  public:
-  CvodesSession(const IntegratorOptions& options, int parameter_count)
-      : parameter_count_(parameter_count), max_steps_(options.max_steps) {
+  CvodesSession(const IntegratorOptions& options, int parameter_count, bool quadrature)
+      : parameter_count_(parameter_count), quadrature_(quadrature), max_steps_(options.max_steps) {
     ok_ = SUNContext_Create(nullptr, &context_) == 0;
     if (!ok_) return;
     y_ = N_VNew_Serial(3, context_);
@@ -104,7 +140,17 @@ class RoverIntegrator::CvodesSession {
     if (!ok_) return;
     solver_ = SUNNonlinSol_FixedPoint(y_, 0, context_);
     ok_ = solver_ != nullptr && CVodeSetNonlinearSolver(memory_, solver_) == CV_SUCCESS;
-    if (!ok_ || !options.sensitivities || parameter_count_ == 0) return;
+    if (!ok_) return;
+    if (quadrature_) {
+      yq_ = N_VNew_Serial(1, context_);
+      ok_ = yq_ != nullptr;
+      if (!ok_) return;
+      N_VConst(0.0, yq_);
+      // No error control on the quadrature: the steps are chosen for the state.
+      ok_ = CVodeQuadInit(memory_, integrandRhs, yq_) == CV_SUCCESS;
+      if (!ok_) return;
+    }
+    if (!options.sensitivities || parameter_count_ == 0) return;
     ys_ = N_VCloneVectorArray(parameter_count_, y_);
     ok_ = ys_ != nullptr;
     if (!ok_) return;
@@ -123,9 +169,17 @@ class RoverIntegrator::CvodesSession {
           CVodeSetNonlinearSolverSensSim(memory_, sensitivity_solver_) == CV_SUCCESS;
     data_.dv_dq.resize(parameter_count_);
     data_.domega_dq.resize(parameter_count_);
+    if (!ok_ || !quadrature_) return;
+    yqs_ = N_VCloneVectorArray(parameter_count_, yq_);
+    ok_ = yqs_ != nullptr;
+    if (!ok_) return;
+    for (int i = 0; i < parameter_count_; ++i) N_VConst(0.0, yqs_[i]);
+    ok_ = CVodeQuadSensInit(memory_, integrandSensitivityRhs, yqs_) == CV_SUCCESS;
   }
 
   ~CvodesSession() {
+    if (yqs_ != nullptr) N_VDestroyVectorArray(yqs_, parameter_count_);
+    if (yq_ != nullptr) N_VDestroy(yq_);
     if (ys_ != nullptr) N_VDestroyVectorArray(ys_, parameter_count_);
     if (memory_ != nullptr) CVodeFree(&memory_);
     if (sensitivity_solver_ != nullptr) SUNNonlinSolFree(sensitivity_solver_);
@@ -137,13 +191,19 @@ class RoverIntegrator::CvodesSession {
   CvodesSession& operator=(const CvodesSession&) = delete;
 
   bool ok() const { return ok_; }
-  int parameterCount() const { return parameter_count_; }
+  /// Whether this session serves a call with these settings.
+  bool matches(int parameter_count, bool quadrature) const {
+    return parameter_count_ == parameter_count && quadrature_ == quadrature;
+  }
 
   void run(const RoverKinematics& kinematics, AttitudeWorkspace& workspace,
-           const Eigen::Vector3d& initial, const ControlProfile& controls, double duration,
+           const Eigen::Vector3d& initial, const ControlProfile& controls,
+           const RunningIntegrand* integrand, double duration,
            const std::vector<double>& sample_times, IntegrationResult& result) {
     data_.kinematics = &kinematics;
     data_.controls = &controls;
+    data_.integrand = integrand;
+    data_.cached = false;
     data_.workspace = &workspace;
     data_.failure = AttitudeStatus::kOk;
     data_.evaluations = 0;
@@ -163,6 +223,19 @@ class RoverIntegrator::CvodesSession {
         return;
       }
     }
+    if (quadrature_) {
+      N_VConst(0.0, yq_);
+      bool reinitialised = CVodeQuadReInit(memory_, yq_) == CV_SUCCESS;
+      if (reinitialised && yqs_ != nullptr) {
+        for (int i = 0; i < parameter_count_; ++i) N_VConst(0.0, yqs_[i]);
+        reinitialised = CVodeQuadSensReInit(memory_, yqs_) == CV_SUCCESS;
+      }
+      if (!reinitialised) {
+        fail(result, IntegrationStatus::kSolverFailure,
+             "CVODES quadrature re-initialisation failed");
+        return;
+      }
+    }
     // One internal step at a time (CV_ONE_STEP, never past the stop time), dense output at the
     // sample times: the last accepted step is always known, for reports after a failure.
     realtype t_internal = 0.0;
@@ -178,6 +251,17 @@ class RoverIntegrator::CvodesSession {
       if (ts == 0.0) Eigen::Map<Eigen::Vector3d>(N_VGetArrayPointer(y_)) = initial;
       recordSample(kinematics, workspace, controls, ts, result);
       if (result.status != IntegrationStatus::kOk) return;
+      if (with_sensitivities && ts > 0.0) {
+        if (CVodeGetSensDky(memory_, ts, 0, ys_) != CV_SUCCESS) {
+          fail(result, IntegrationStatus::kSolverFailure, "CVodeGetSensDky failed");
+          return;
+        }
+        const Eigen::Index row = 3 * static_cast<Eigen::Index>(result.samples.samples.size() - 1);
+        for (int i = 0; i < parameter_count_; ++i) {
+          result.sample_sensitivity.block<3, 1>(row, i) =
+              Eigen::Map<const Eigen::Vector3d>(N_VGetArrayPointer(ys_[i]));
+        }
+      }
     }
     if (!advance(duration, t_internal, result)) return;
     if (duration > 0.0 && CVodeGetDky(memory_, duration, 0, y_) != CV_SUCCESS) {
@@ -195,6 +279,19 @@ class RoverIntegrator::CvodesSession {
       }
       for (int i = 0; i < parameter_count_; ++i) {
         result.sensitivity.col(i) = Eigen::Map<const Eigen::Vector3d>(N_VGetArrayPointer(ys_[i]));
+      }
+    }
+    if (quadrature_ && duration > 0.0) {
+      if (CVodeGetQuadDky(memory_, duration, 0, yq_) != CV_SUCCESS ||
+          (yqs_ != nullptr && CVodeGetQuadSensDky(memory_, duration, 0, yqs_) != CV_SUCCESS)) {
+        fail(result, IntegrationStatus::kSolverFailure, "CVodeGetQuadDky failed");
+        return;
+      }
+      result.integral = N_VGetArrayPointer(yq_)[0];
+      if (yqs_ != nullptr) {
+        for (int i = 0; i < parameter_count_; ++i) {
+          result.integral_sensitivity(i) = N_VGetArrayPointer(yqs_[i])[0];
+        }
       }
     }
     finishCounters(result);
@@ -260,10 +357,13 @@ class RoverIntegrator::CvodesSession {
   }
 
   int parameter_count_;
+  bool quadrature_;
   bool ok_ = false;
   SUNContext context_ = nullptr;
   N_Vector y_ = nullptr;
   N_Vector* ys_ = nullptr;
+  N_Vector yq_ = nullptr;
+  N_Vector* yqs_ = nullptr;
   void* memory_ = nullptr;
   SUNNonlinearSolver solver_ = nullptr;
   SUNNonlinearSolver sensitivity_solver_ = nullptr;
@@ -286,10 +386,12 @@ RoverIntegrator::~RoverIntegrator() = default;
 void RoverIntegrator::integrateCvodes(const Eigen::Vector3d& initial,
                                       const ControlProfile& controls, double duration,
                                       const std::vector<double>& sample_times,
+                                      const RunningIntegrand* integrand,
                                       IntegrationResult& result) {
   const int nq = controls.parameterCount();
-  if (!cvodes_ || cvodes_->parameterCount() != nq) {
-    cvodes_ = std::make_unique<CvodesSession>(options_, nq);
+  const bool quadrature = integrand != nullptr;
+  if (!cvodes_ || !cvodes_->matches(nq, quadrature)) {
+    cvodes_ = std::make_unique<CvodesSession>(options_, nq, quadrature);
   }
   if (!cvodes_->ok()) {
     result.status = IntegrationStatus::kSolverFailure;
@@ -297,7 +399,8 @@ void RoverIntegrator::integrateCvodes(const Eigen::Vector3d& initial,
     cvodes_.reset();
     return;
   }
-  cvodes_->run(kinematics_, workspace_, initial, controls, duration, sample_times, result);
+  cvodes_->run(kinematics_, workspace_, initial, controls, integrand, duration, sample_times,
+               result);
 }
 
 }  // namespace terratraj::models

@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "terratraj/models/vehicle_limits.hpp"
 #include "terratraj/terrain/terrain_source.hpp"
 
 namespace terratraj::apps {
@@ -153,18 +154,10 @@ inline std::vector<std::string> plannerKindNames() {
 // Sections of the problem file.
 
 /// Degrees -> radians factor.
-inline constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+using models::kRadiansPerDegree;
 
 /// `vehicle.limits`: bounds the trajectory must respect. All > 0.
-struct VehicleLimits {
-  double v_max = 1.0;                           ///< speed [m/s]
-  double a_max = 0.5;                           ///< |acceleration| [m/s^2]
-  double omega_max = 1.0;                       ///< |yaw rate| [rad/s]
-  double kappa_max = 1.0;                       ///< |curvature| [1/m]
-  double sigma_max = 0.5;                       ///< |curvature rate| d(kappa)/dt [1/(m s)]
-  double pitch_max = 17.0 * kRadiansPerDegree;  ///< |pitch| [rad], in (0, pi/2)
-  double roll_max = 20.0 * kRadiansPerDegree;   ///< |roll| [rad], in (0, pi/2)
-};
+using models::VehicleLimits;
 
 /// `vehicle.tables`: optional kinodynamic look-up tables (JSON files; relative paths are
 /// resolved against the problem file's folder by the loader).

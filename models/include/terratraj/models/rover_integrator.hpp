@@ -60,6 +60,20 @@ enum class IntegrationStatus {
 /// The name of a status ("ok", "no_terrain", ...).
 const char* integrationStatusName(IntegrationStatus status);
 
+/// A scalar running integrand L(t, state, v, omega) integrated along with the state (a running
+/// cost, a slope dwell): the integrator reports its integral and, with sensitivities, the
+/// integral's derivative by q. Implementations must not allocate or throw (they run inside
+/// CVODES callbacks).
+class RunningIntegrand {
+ public:
+  virtual ~RunningIntegrand() = default;
+  /// L at time t [s] given the kinematics' rates at the state (their attitude and its Jacobian
+  /// included) and the inputs v [m/s], omega [rad/s]. When not null, d_state receives
+  /// dL / d(x, y, heading) and d_input dL / d(v, omega).
+  virtual double evaluate(double t, const RoverRates& rates, double v, double omega,
+                          Eigen::Vector3d* d_state, Eigen::Vector2d* d_input) const = 0;
+};
+
 /// What an integration produced.
 struct IntegrationResult {
   IntegrationStatus status = IntegrationStatus::kOk;
@@ -68,6 +82,10 @@ struct IntegrationResult {
   Eigen::Vector3d final_state = Eigen::Vector3d::Zero();  ///< (x, y, heading) at t_reached
   Eigen::MatrixXd sensitivity;                            ///< 3 x parameterCount(), if requested
   Trajectory samples;                                     ///< the states at the sample times
+  /// With sensitivities and samples: d(x, y, heading) / dq at sample i in rows 3i..3i+2.
+  Eigen::MatrixXd sample_sensitivity;
+  double integral = 0.0;  ///< integral of the running integrand over [0, t_reached], if given
+  Eigen::RowVectorXd integral_sensitivity;  ///< d integral / dq, with sensitivities
   long steps = 0;                                         ///< steps taken
   long rhs_evaluations = 0;                               ///< kinematics evaluations
 };
@@ -85,18 +103,20 @@ class RoverIntegrator {
 
   /// Integrates from `initial` (x, y, heading) at t = 0 to `duration` [s] under `controls`.
   /// `sample_times` (ascending, within [0, duration]) selects the rows of result.samples; empty
-  /// gives no samples. Reuses `result`'s storage.
+  /// gives no samples. `integrand`, when not null, is integrated alongside (result.integral).
+  /// Reuses `result`'s storage.
   void integrate(const Eigen::Vector3d& initial, const ControlProfile& controls, double duration,
-                 const std::vector<double>& sample_times, IntegrationResult& result);
+                 const std::vector<double>& sample_times, IntegrationResult& result,
+                 const RunningIntegrand* integrand = nullptr);
 
  private:
   class CvodesSession;
   void integrateCvodes(const Eigen::Vector3d& initial, const ControlProfile& controls,
                        double duration, const std::vector<double>& sample_times,
-                       IntegrationResult& result);
+                       const RunningIntegrand* integrand, IntegrationResult& result);
   void integrateFixedStep(const Eigen::Vector3d& initial, const ControlProfile& controls,
                           double duration, const std::vector<double>& sample_times,
-                          IntegrationResult& result);
+                          const RunningIntegrand* integrand, IntegrationResult& result);
 
   RoverKinematics kinematics_;
   IntegratorOptions options_;

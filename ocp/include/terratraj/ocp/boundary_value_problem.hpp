@@ -1,0 +1,67 @@
+#pragma once
+// BoundaryValueProblem: start and goal states, the cost, the control parametrisation and the
+// vehicle limits of one trajectory-generation problem (004_... 2). Plain values; the terrain
+// and vehicle model are passed to the solvers separately.
+
+#include <optional>
+#include <string>
+
+#include "terratraj/models/vehicle_limits.hpp"
+#include "terratraj/models/velocity_table.hpp"
+
+namespace terratraj::ocp {
+
+/// A boundary state in the local map frame: position [m], heading [rad], body speed [m/s] and
+/// yaw rate [rad/s].
+struct VehicleState {
+  double x = 0.0;
+  double y = 0.0;
+  double heading = 0.0;
+  double v = 0.0;
+  double omega = 0.0;
+};
+
+/// What the optimiser minimises.
+enum class CostKind {
+  kTime,        ///< J = t_f (004_... eq. 16)
+  kSlopeDwell,  ///< J = integral of 1 + alpha (roll^2 + pitch^2) dt (004_... eq. 17)
+};
+
+/// The cost functional.
+struct CostFunctional {
+  CostKind kind = CostKind::kTime;
+  double alpha = 0.0;  ///< slope-dwell weight [1/rad^2], >= 0
+};
+
+/// Orders of the control polynomials (004_... eq. 12): yaw rate and speed are polynomials in
+/// t / t_f of these orders; the top coefficient of each is fixed by the terminal yaw rate and
+/// speed (eq. 13), the others are unknowns.
+struct ControlOrders {
+  int yaw_rate = 4;  ///< in [1, 8]; 4 as in the paper
+  int speed = 1;     ///< in [1, 8]; 1 as in the paper (speed linear from start.v to goal.v)
+};
+
+/// Optional kinodynamic look-up tables limiting speed (003_...); not owned.
+struct SpeedTables {
+  const models::PitchSpeedTable* pitch = nullptr;
+  const models::RollCurvatureSpeedTable* roll_curvature = nullptr;
+};
+
+/// One boundary-value problem.
+struct BoundaryValueProblem {
+  VehicleState start;
+  VehicleState goal;
+  CostFunctional cost;
+  ControlOrders orders;
+  models::VehicleLimits limits;
+  SpeedTables tables;
+};
+
+/// Why a problem cannot be posed (orders out of range, non-finite values, a speed profile that
+/// is zero throughout), or std::nullopt when it can.
+std::optional<std::string> validateProblem(const BoundaryValueProblem& problem);
+
+/// Heading difference a - b wrapped to (-pi, pi] [rad].
+double wrapAngle(double angle);
+
+}  // namespace terratraj::ocp

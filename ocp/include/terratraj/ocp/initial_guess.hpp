@@ -1,0 +1,36 @@
+#pragma once
+// The initial guess of the terrain-adaptive solve (004_... 3.5): a heuristic in the manner of
+// Nagy & Kelly, the fully constrained flat-ground solution (Gauss-Newton, minimum-norm steps),
+// then the flat-ground optimum; the multipliers from the right pseudo-inverse (eq. 15) and the
+// flat optimum's Hessian of the Lagrangian (for BFGS's first W).
+
+#include <Eigen/Core>
+#include <string>
+
+#include "terratraj/ocp/boundary_value_problem.hpp"
+#include "terratraj/terrain/terrain_surface.hpp"
+
+namespace terratraj::ocp {
+
+/// Where a solve starts.
+struct InitialGuess {
+  bool ok = false;      ///< false: the flat problem has no solution of this form (reason)
+  std::string reason;
+  Eigen::VectorXd q;
+  Eigen::Vector3d lambda = Eigen::Vector3d::Zero();
+  Eigen::MatrixXd hessian;  ///< empty when the flat optimisation did not converge
+  bool flat_optimum = false;  ///< q is the flat-ground optimum (else the constrained solution)
+  long integrations = 0;
+};
+
+/// Heuristic unknowns: t_f from the Nagy-Kelly arc-length estimate and a mean speed, yaw-rate
+/// coefficients fitted to a turn-toward-then-align profile, speed coefficients fitted to a
+/// cruise at 0.7 v_max.
+Eigen::VectorXd heuristicGuess(const BoundaryValueProblem& problem);
+
+/// The flat-ground initial guess. `surface` only stands behind the flat model (never sampled).
+/// Never throws.
+InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
+                              const terrain::TerrainSurface& surface);
+
+}  // namespace terratraj::ocp

@@ -1,0 +1,168 @@
+#include "terratraj/ocp/initial_guess.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "terratraj/ocp/flat_ground_model.hpp"
+#include "terratraj/ocp/newton_solver.hpp"
+#include "terratraj/ocp/parametric_trajectory_model.hpp"
+
+namespace terratraj::ocp {
+namespace {
+
+constexpr int kFitSamples = 21;
+
+// Least-squares fit of the free coefficients of p(tau) = sum_k c_k tau^k (c_K closed by
+// delta) to target(tau) - p0.
+template <typename Target>
+Eigen::VectorXd fitClosedPolynomial(int order, double delta, Target target) {
+  const int free = order - 1;
+  if (free == 0) return Eigen::VectorXd();
+  Eigen::MatrixXd m(kFitSamples, free);
+  Eigen::VectorXd b(kFitSamples);
+  for (int i = 0; i < kFitSamples; ++i) {
+    const double tau = static_cast<double>(i) / (kFitSamples - 1);
+    const double top = std::pow(tau, order);
+    for (int k = 1; k <= free; ++k) m(i, k - 1) = std::pow(tau, k) - top;
+    b(i) = target(tau) - delta * top;
+  }
+  return m.colPivHouseholderQr().solve(b);
+}
+
+// Flat-ground integration: RK4 with steps of 0.05 s (the flat map is smooth; this is a seed).
+ParametricModelOptions flatOptions() {
+  ParametricModelOptions options;
+  options.integrator.method = models::IntegrationMethod::kRk4;
+  options.integrator.step = 0.05;
+  return options;
+}
+
+}  // namespace
+
+Eigen::VectorXd heuristicGuess(const BoundaryValueProblem& problem) {
+  const VehicleState& s = problem.start;
+  const VehicleState& g = problem.goal;
+  const double c = std::cos(s.heading), sn = std::sin(s.heading);
+  const double dx = c * (g.x - s.x) + sn * (g.y - s.y);
+  const double dy = -sn * (g.x - s.x) + c * (g.y - s.y);
+  const double distance = std::hypot(dx, dy);
+  const double bearing = std::atan2(dy, dx);
+  const double turn = wrapAngle(g.heading - s.heading);
+  // Nagy & Kelly's arc-length estimate, with the heading changes at both ends.
+  const double length =
+      distance * (1.0 + (bearing * bearing + (turn - bearing) * (turn - bearing)) / 5.0) +
+      0.1;
+
+  const ParametricControls layout(s, g, problem.orders);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(layout.parameterCount());
+  const int speed_order = problem.orders.speed;
+  const double cruise = std::max({0.7 * problem.limits.v_max, s.v, g.v, 1e-3});
+  // Speed: rise to cruise over the first quarter, hold, fall over the last quarter.
+  const auto speed_target = [&](double tau) {
+    if (tau < 0.25) return s.v + (cruise - s.v) * tau / 0.25;
+    if (tau > 0.75) return g.v + (cruise - g.v) * (1.0 - tau) / 0.25;
+    return cruise;
+  };
+  const Eigen::VectorXd speed =
+      fitClosedPolynomial(speed_order, g.v - s.v, [&](double tau) { return speed_target(tau) - s.v; });
+  q.segment(layout.speedIndex(), speed.size()) = speed;
+  ParametricControls fitted(s, g, problem.orders);
+  Eigen::VectorXd probe = q;
+  probe(layout.finalTimeIndex()) = 1.0;
+  fitted.setParameters(probe);
+  double mean_speed = 0.0;
+  for (int i = 0; i < kFitSamples; ++i) {
+    double v = 0.0, omega = 0.0;
+    fitted.evaluate(static_cast<double>(i) / (kFitSamples - 1), v, omega, nullptr, nullptr);
+    mean_speed += std::abs(v) / kFitSamples;
+  }
+  const double tf = length / std::max(mean_speed, 1e-3);
+  // Yaw rate: turn toward the goal, then align with its heading (heading(tau) =
+  // turn tau + 3 (2 bearing - turn) (tau - tau^2)...): omega = turn / t_f + A (1 - 2 tau).
+  const double a = 6.0 * (bearing - 0.5 * turn) / tf;
+  const Eigen::VectorXd yaw = fitClosedPolynomial(problem.orders.yaw_rate, g.omega - s.omega,
+                                                  [&](double tau) {
+                                                    return turn / tf + a * (1.0 - 2.0 * tau) -
+                                                           s.omega;
+                                                  });
+  q.head(yaw.size()) = yaw;
+  q(layout.finalTimeIndex()) = tf;
+  return q;
+}
+
+InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
+                              const terrain::TerrainSurface& surface) {
+  InitialGuess guess;
+  const FlatGroundModel flat(surface);
+  BoundaryValueProblem flat_problem = problem;
+  flat_problem.cost.kind = CostKind::kTime;  // no slope to dwell on
+  ParametricTrajectoryModel model(flat, flat_problem, flatOptions());
+  const int itf = model.finalTimeIndex();
+  Eigen::VectorXd q = heuristicGuess(problem);
+  guess.q = q;
+
+  // Fully constrained: Gauss-Newton with minimum-norm (Levenberg) steps on c(q) = 0.
+  ParametricEvaluation at, trial;
+  bool solved = false;
+  double mu = 1e-6;
+  if (model.evaluate(q, DerivativeMode::kSensitivity, at)) {
+    for (int iteration = 0; iteration < 60 && !solved; ++iteration) {
+      if (at.terminal_error.norm() < 1e-9) {
+        solved = true;
+        break;
+      }
+      const Eigen::MatrixXd& a = at.jacobian;
+      bool improved = false;
+      for (int tries = 0; tries < 30 && !improved; ++tries, mu *= 10.0) {
+        const Eigen::Matrix3d aat = a * a.transpose() + mu * Eigen::Matrix3d::Identity();
+        Eigen::VectorXd d = -a.transpose() * aat.ldlt().solve(at.terminal_error);
+        if (d(itf) < 0.0) d *= std::min(1.0, 0.5 * q(itf) / -d(itf));
+        const Eigen::VectorXd q_next = q + d;
+        if (model.evaluate(q_next, DerivativeMode::kSensitivity, trial) &&
+            trial.terminal_error.norm() < at.terminal_error.norm()) {
+          q = q_next;
+          std::swap(at, trial);
+          improved = true;
+          mu = std::max(1e-9, mu / 100.0);
+        }
+      }
+      if (!improved) break;
+    }
+    solved = solved || at.terminal_error.norm() < 1e-6;
+  }
+  guess.integrations = model.integrations();
+  if (!solved) {
+    guess.reason = "no flat-ground trajectory of this polynomial form reaches the goal from "
+                   "the heuristic guess (yaw-rate order " +
+                   std::to_string(problem.orders.yaw_rate) + ", speed order " +
+                   std::to_string(problem.orders.speed) + ")";
+    return guess;
+  }
+  guess.ok = true;
+  guess.q = q;
+  guess.lambda = leastSquaresMultipliers(at.jacobian, at.gradient);
+
+  // The flat-ground optimum (Newton with finite-difference Hessians: the flat map is cheap).
+  NewtonOptions options;
+  options.hessian = HessianApproximation::kFiniteDifference;
+  options.hessian_step = 1e-6;
+  options.max_iterations = 30;
+  options.criteria = {1e-6, 1e-6, 1e-6};
+  NewtonStart start{q, guess.lambda, Eigen::MatrixXd()};
+  const SolveResult optimum = solveNewton(model, start, options, "flat");
+  guess.integrations = model.integrations();
+  if (optimum.status == SolveStatus::kConverged) {
+    guess.q = optimum.q;
+    guess.lambda = optimum.lambda;
+    guess.flat_optimum = true;
+    if (!model.lagrangianHessian(guess.q, guess.lambda, DerivativeMode::kSensitivity, 1e-6,
+                                 guess.hessian)) {
+      guess.hessian.resize(0, 0);
+    }
+    guess.integrations = model.integrations();
+  }
+  return guess;
+}
+
+}  // namespace terratraj::ocp
