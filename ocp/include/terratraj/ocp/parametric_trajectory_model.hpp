@@ -9,11 +9,13 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "terratraj/models/rover_integrator.hpp"
 #include "terratraj/models/terrain_following_model.hpp"
 #include "terratraj/ocp/boundary_value_problem.hpp"
 #include "terratraj/ocp/parametric_controls.hpp"
+#include "terratraj/ocp/path_constraints.hpp"
 #include "terratraj/ocp/slope_dwell_integrand.hpp"
 
 namespace terratraj::ocp {
@@ -46,6 +48,14 @@ struct ParametricEvaluation {
   bool ok() const { return status == models::IntegrationStatus::kOk; }
 };
 
+/// Points along the trajectory at fixed fractions tau of t_f, with their derivatives by q (for
+/// path constraints).
+struct PathEvaluation {
+  std::vector<PathPoint> points;
+  /// d (x, y, heading, v, omega, v', omega') / dq at each point (kPathVariables x n).
+  std::vector<Eigen::Matrix<double, kPathVariables, Eigen::Dynamic>> derivatives;
+};
+
 /// The boundary-value problem as a function of q on one terrain-following model.
 class ParametricTrajectoryModel {
  public:
@@ -67,6 +77,12 @@ class ParametricTrajectoryModel {
   /// (off the map, no contact, t_f <= 0, NaN in q) out.status / message say why. Never throws.
   bool evaluate(const Eigen::VectorXd& q, DerivativeMode mode, ParametricEvaluation& out);
 
+  /// As evaluate() with kNone or kSensitivity, and also the points at the fractions `tau`
+  /// (ascending, in [0, 1]) of t_f, from the same integration.
+  bool evaluateWithPath(const Eigen::VectorXd& q, bool derivatives,
+                        const std::vector<double>& tau, ParametricEvaluation& out,
+                        PathEvaluation& path);
+
   /// Hessian of the Lagrangian J + lambda' c at q by finite differences with step h:
   /// of sensitivity gradients (kSensitivity: n integrations) or of values (kFiniteDifference,
   /// eq. 11: n (n + 3) / 2 integrations). Symmetric. False if an integration fails.
@@ -77,7 +93,8 @@ class ParametricTrajectoryModel {
   long integrations() const { return integrations_; }
 
  private:
-  bool integrate(const Eigen::VectorXd& q, bool sensitivities, ParametricEvaluation& out);
+  bool integrate(const Eigen::VectorXd& q, bool sensitivities, ParametricEvaluation& out,
+                 const std::vector<double>& sample_times);
   bool finiteDifferences(const Eigen::VectorXd& q, ParametricEvaluation& out);
 
   const models::TerrainFollowingModel* vehicle_;
@@ -91,7 +108,8 @@ class ParametricTrajectoryModel {
   models::AttitudeWorkspace terminal_workspace_;
   models::RoverRates terminal_rates_;
   ParametricEvaluation scratch_, scratch2_;
-  Eigen::VectorXd dv_dq_, domega_dq_;
+  Eigen::VectorXd dv_dq_, domega_dq_, dv_dot_dq_, domega_dot_dq_;
+  std::vector<double> sample_times_;
   long integrations_ = 0;
 };
 
