@@ -244,7 +244,8 @@ class RoverIntegrator::CvodesSession {
     steps_taken_ = 0;
     for (const double ts : sample_times) {
       if (!advance(ts, t_internal, result)) return;
-      if (ts < t_internal && CVodeGetDky(memory_, ts, 0, y_) != CV_SUCCESS) {
+      // Always interpolate: y_ may hold an earlier sample, not the state at t_internal.
+      if (ts > 0.0 && CVodeGetDky(memory_, ts, 0, y_) != CV_SUCCESS) {
         fail(result, IntegrationStatus::kSolverFailure, "CVodeGetDky failed");
         return;
       }

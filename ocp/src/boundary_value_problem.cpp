@@ -26,6 +26,11 @@ std::optional<std::string> validateProblem(const BoundaryValueProblem& problem) 
     return "speed polynomial order " + std::to_string(problem.orders.speed) +
            " is outside [1, 8]";
   }
+  if (problem.orders.yaw_rate + problem.orders.speed - 1 < 3) {
+    return "the controls have " + std::to_string(problem.orders.yaw_rate + problem.orders.speed - 1) +
+           " unknowns, fewer than the 3 terminal constraints (x, y, heading): raise "
+           "solver.yaw_rate_order";
+  }
   if (!(problem.cost.alpha >= 0.0) || !std::isfinite(problem.cost.alpha)) {
     return "cost alpha must be finite and >= 0";
   }

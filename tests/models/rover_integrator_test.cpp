@@ -216,6 +216,12 @@ TEST(RoverIntegrator, SamplesAtRequestedTimes) {
     EXPECT_DOUBLE_EQ(result.samples.samples[0].x, 8.0);
     EXPECT_NEAR(result.samples.samples[4].curvature, 0.1 / 0.8, 1e-12);
     EXPECT_TRUE(std::isfinite(result.samples.samples[7].pitch));
+    // Dense samples: several inside the last step, the final one at the stop time (a sample
+    // there once repeated the previous one).
+    integrator.integrate({8.0, 18.0, 0.0}, controls, 5.0, uniformSampleTimes(5.0, 0.003), result);
+    ASSERT_EQ(result.status, IntegrationStatus::kOk);
+    EXPECT_NEAR(result.samples.samples.back().x, result.final_state.x(), 1e-12);
+    EXPECT_NEAR(result.samples.samples.back().y, result.final_state.y(), 1e-12);
   }
 }
 

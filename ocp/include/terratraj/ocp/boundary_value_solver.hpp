@@ -1,0 +1,69 @@
+#pragma once
+// solveBoundaryValue(): the whole boundary-value solve of `terratraj solve` (004_...): the
+// flat-ground initial guess, one of the solvers on the terrain, then an independent
+// re-simulation that supplies the report's figures and decides the final status.
+
+#include <optional>
+#include <string>
+
+#include "terratraj/models/terrain_following_model.hpp"
+#include "terratraj/ocp/boundary_value_problem.hpp"
+#include "terratraj/ocp/initial_guess.hpp"
+#include "terratraj/ocp/parametric_trajectory_model.hpp"
+#include "terratraj/ocp/solve_result.hpp"
+#include "terratraj/ocp/trajectory_verifier.hpp"
+#include "terratraj/terrain/elevation_map.hpp"
+
+namespace terratraj::ocp {
+
+/// The solvers over the parametric formulation.
+enum class BoundaryValueMethod {
+  kNewton,    ///< sensitivities, damped BFGS from the flat optimum's Hessian, line search
+  kNewtonFd,  ///< the paper's: finite-difference Jacobian and Hessian (eqs. 10-11), RK4
+  kIpopt,     ///< Ipopt with exact first derivatives and sampled path constraints
+  kCeres,     ///< Ceres under an augmented-Lagrangian loop (limits not enforced)
+};
+
+/// "newton", "newton_fd", "ipopt", "ceres".
+const char* boundaryValueMethodName(BoundaryValueMethod method);
+
+/// Settings of a solve.
+struct BoundaryValueOptions {
+  BoundaryValueMethod method = BoundaryValueMethod::kNewton;
+  ConvergenceCriteria criteria;
+  int max_iterations = 100;            ///< solver iterations, >= 1
+  std::optional<double> time_limit_s;  ///< wall clock of the solver; absent = none
+  /// Integration of the terrain stage (CVODES; newton_fd switches to fixed-step RK4 so that
+  /// finite differences see a smooth map).
+  models::IntegratorOptions integrator = [] {
+    models::IntegratorOptions options;
+    options.relative_tolerance = 1e-7;
+    options.absolute_tolerance = 1e-9;
+    return options;
+  }();
+  double newton_fd_step = 0.01;        ///< RK4 step of newton_fd [s]
+  int path_points = 41;                ///< ipopt: points where path constraints are imposed
+  double limit_tolerance = 1e-3;       ///< violation tolerated before kInfeasible (limit units)
+  VerificationOptions verification;
+};
+
+/// A solve and its verification.
+struct BoundaryValueSolution {
+  SolveStatus status = SolveStatus::kError;  ///< after verification
+  std::string reason;                        ///< why, for anything but kConverged
+  SolveResult solver;                        ///< the solver's own account
+  InitialGuess initial_guess;
+  VerifiedTrajectory verified;  ///< the re-simulation of solver.q (ok false if not possible)
+  double total_time_ms = 0.0;         ///< initial guess + solver [ms]
+  double verification_time_ms = 0.0;  ///< the re-simulation [ms]
+};
+
+/// Solves `problem` on `vehicle`; `map` (optional) supplies the lethal layer for the check.
+/// The final status is kConverged only when the re-simulated terminal errors are within the
+/// criteria and every limit holds (else kInfeasible, with the limit named). Never throws.
+BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& vehicle,
+                                         const BoundaryValueProblem& problem,
+                                         const BoundaryValueOptions& options,
+                                         const terrain::ElevationMap* map = nullptr);
+
+}  // namespace terratraj::ocp
