@@ -13,6 +13,7 @@
 
 #include "terratraj/apps/lut_commands.hpp"
 #include "terratraj/apps/problem_commands.hpp"
+#include "terratraj/apps/solve_command.hpp"
 #include "terratraj/apps/terrain_commands.hpp"
 #include "terratraj/terrain/input_error.hpp"
 
@@ -124,6 +125,18 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   check_command->add_option("PROBLEM", check.problem, "problem YAML")->required();
   check_command->add_flag("--json", json_flag, "print one JSON object");
 
+  SolveOptions solve;
+  CLI::App* solve_command = app.add_subcommand(
+      "solve",
+      "One boundary-value problem: from the problem's start to its goal, a trajectory locally "
+      "optimal for its cost (newton, newton_fd, ipopt, ceres). Exit 0 converged, 1 not solved "
+      "(the report says why), 2 bad input.");
+  solve_command->add_option("PROBLEM", solve.problem, "problem YAML")->required();
+  solve_command->add_option("--method", solve.method, "overrides solver.method")
+      ->check(CLI::IsMember(solverMethodNames()));
+  solve_command->add_option("--out", solve.out, "write the re-simulated trajectory (CSV)");
+  solve_command->add_flag("--json", json_flag, "print the report as one JSON object");
+
   CLI::App* lut_command = app.add_subcommand(
       "lut", "Kinodynamic look-up tables (speed limits by pitch, roll x curvature).");
   lut_command->require_subcommand(1);
@@ -205,6 +218,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       return runTerrainGenerate(generate, context);
     }
     if (*check_command) return runCheck(check, context);
+    if (*solve_command) return runSolve(solve, context);
     if (*lut_build_command) return runLutBuild(lut_build, context);
     if (*lut_check_command) return runLutCheck(lut_check, context);
     if (*lut_physics_command) return runLutPhysics(lut_physics, context);

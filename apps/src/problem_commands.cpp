@@ -53,7 +53,8 @@ nlohmann::json terrainSourceJson(const terrain::TerrainSource& source) {
 
 constexpr double kDegreesPerRadian = 57.29577951308232;
 
-// The vehicle's attitude at a boundary state; InputError when it cannot rest there.
+}  // namespace
+
 models::AttitudeResult restingAttitude(const models::TerrainFollowingModel& model,
                                        const BoundaryState& state, const char* which,
                                        const ProblemSpec& problem) {
@@ -74,6 +75,8 @@ models::AttitudeResult restingAttitude(const models::TerrainFollowingModel& mode
   }
   return result;
 }
+
+namespace {
 
 nlohmann::json attitudeJson(const models::AttitudeResult& result) {
   return {

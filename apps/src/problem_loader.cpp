@@ -646,21 +646,26 @@ CostSpec parseCost(const Context& ctx, const Field& field) {
 
 // `solver.tolerance`, into `solver`.
 void parseTolerance(const Context& ctx, const Field& field, SolverSpec& solver) {
-  const MapReader map(ctx, field, {"position_m", "heading_rad"});
+  const MapReader map(ctx, field, {"position_m", "heading_rad", "lagrangian_gradient"});
   map.readNumberInto("position_m", Range::positive(), solver.tolerance_position_m);
   map.readNumberInto("heading_rad", Range::positive(), solver.tolerance_heading_rad);
+  map.readNumberInto("lagrangian_gradient", Range::positive(),
+                     solver.tolerance_lagrangian_gradient);
 }
 
 // `solver`.
 SolverSpec parseSolver(const Context& ctx, const Field& field) {
   const MapReader map(ctx, field,
-                      {"method", "intervals", "max_iterations", "tolerance", "time_limit_s"});
+                      {"method", "intervals", "max_iterations", "tolerance", "time_limit_s",
+                       "yaw_rate_order", "speed_order"});
   SolverSpec solver;
   if (const std::optional<Field> method = map.find("method")) {
     solver.method = readEnum<SolverMethod>(ctx, *method, parseSolverMethod, solverMethodNames());
   }
   map.readIntInto("intervals", kMinIntervals, kMaxIntervals, solver.intervals);
   map.readIntInto("max_iterations", kMinIterations, kMaxIterations, solver.max_iterations);
+  map.readIntInto("yaw_rate_order", 1, 8, solver.yaw_rate_order);
+  map.readIntInto("speed_order", 1, 8, solver.speed_order);
   if (const std::optional<Field> tolerance = map.find("tolerance")) {
     parseTolerance(ctx, *tolerance, solver);
   }

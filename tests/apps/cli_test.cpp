@@ -295,5 +295,67 @@ TEST_F(CliTest, LutPhysicsAndSimulatedLog) {
   EXPECT_THAT(built.out, HasSubstr("v_max [m/s]"));
 }
 
+// `solve`: the contract's report, a CSV whose last row is the goal actually reached, and the
+// exit statuses 0 / 1 / 2.
+TEST_F(CliTest, SolveWritesTheReportAndTheTrajectory) {
+  const std::string problem =
+      "terrain:\n  generate: {kind: hill, rows: 64, cols: 64, cell: 0.25, seed: 1}\n"
+      "vehicle:\n  model: point\n  limits: {kappa_max: 3.0, sigma_max: 5.0}\n"
+      "start: {x: 3.0, y: 6.0, heading_deg: 0, v: 0.5}\n"
+      "goal:  {x: 9.0, y: 8.0, heading_deg: 30, v: 0.5}\n";
+  write("problem.yaml", problem);
+  const CliResult ok =
+      run({"solve", path("problem.yaml"), "--json", "--out", path("trajectory.csv")});
+  ASSERT_EQ(ok.status, kExitSuccess) << ok.err << ok.out;
+  const nlohmann::json json = nlohmann::json::parse(ok.out);
+  for (const char* key :
+       {"status", "method", "iterations", "solve_time_ms", "final_time_s", "cost", "length_m",
+        "terminal_error", "max_abs_pitch_rad", "max_abs_roll_rad", "max_speed",
+        "constraint_violation", "history"}) {
+    EXPECT_TRUE(json.contains(key)) << key;
+  }
+  EXPECT_EQ(json["status"], "converged");
+  EXPECT_EQ(json["method"], "newton");
+  EXPECT_LT(json["terminal_error"]["position_m"].get<double>(), 1e-3);
+  EXPECT_EQ(json["history"].size(), json["iterations"].get<std::size_t>() + 1);
+  std::ifstream csv(path("trajectory.csv"));
+  std::string header, line, last;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "t,x,y,z,heading,roll,pitch,v,omega,curvature");
+  while (std::getline(csv, line)) last = line;
+  std::istringstream row(last);
+  std::string t, x, y;
+  std::getline(row, t, ',');
+  std::getline(row, x, ',');
+  std::getline(row, y, ',');
+  EXPECT_NEAR(std::stod(x), 9.0, 1e-3);
+  EXPECT_NEAR(std::stod(y), 8.0, 1e-3);
+
+  // Read but not solved: rest to rest with a linear speed cannot move (exit 1, report kept).
+  write("still.yaml", problem + "solver: {speed_order: 1}\n");
+  std::string still = problem;
+  still.replace(still.find("v: 0.5}\ngoal"), 7, "v: 0.0}");
+  still.replace(still.rfind("v: 0.5"), 6, "v: 0.0");
+  write("still.yaml", still);
+  const CliResult infeasible = run({"solve", path("still.yaml"), "--json"});
+  EXPECT_EQ(infeasible.status, kExitNotSolved) << infeasible.out;
+  EXPECT_EQ(nlohmann::json::parse(infeasible.out)["status"], "infeasible");
+
+  // Bad input: exit 2 with the key named.
+  const CliResult bad_method = run({"solve", path("problem.yaml"), "--method", "magic"});
+  EXPECT_EQ(bad_method.status, kExitBadInput);
+  write("order.yaml", problem + "solver: {yaw_rate_order: 12}\n");
+  const CliResult bad_order = run({"solve", path("order.yaml")});
+  EXPECT_EQ(bad_order.status, kExitBadInput);
+  EXPECT_THAT(bad_order.err, HasSubstr("solver.yaw_rate_order"));
+  const CliResult transcription =
+      run({"solve", path("problem.yaml"), "--method", "collocation", "--json"});
+  EXPECT_EQ(transcription.status, kExitBadInput);
+  EXPECT_EQ(nlohmann::json::parse(transcription.out)["status"], "error");
+  write("offmap.yaml", "terrain:\n  generate: {kind: hill, rows: 64, cols: 64, cell: 0.25}\n"
+                       "start: {x: 3.0, y: 6.0, v: 0.5}\ngoal: {x: 30.0, y: 6.0, v: 0.5}\n");
+  EXPECT_EQ(run({"solve", path("offmap.yaml")}).status, kExitBadInput);
+}
+
 }  // namespace
 }  // namespace terratraj::apps

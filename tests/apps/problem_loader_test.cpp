@@ -373,7 +373,7 @@ TEST(ProblemLoader, UnknownKeyAtEveryDepth) {
   EXPECT_THAT(parseError(withTerrain("{file: a.tif, z: 3}")), HasSubstr("terrain.z: unknown key"));
   EXPECT_THAT(parseError(minimalWith("solver: {tolerance: {position: 1}}\n")),
               HasSubstr("solver.tolerance.position: unknown key (expected one of: position_m, "
-                        "heading_rad)"));
+                        "heading_rad, lagrangian_gradient)"));
   EXPECT_THAT(parseError(minimalWith("vehicle: {tables: {yaw: t.json}}\n")),
               HasSubstr("vehicle.tables.yaw: unknown key"));
   EXPECT_THAT(parseError(withStart("{x: 0, y: 0, heading: 0, theta: 1}")),

@@ -7,6 +7,7 @@
 
 #include "terratraj/apps/command_context.hpp"
 #include "terratraj/apps/problem_spec.hpp"
+#include "terratraj/models/terrain_following_model.hpp"
 
 namespace terratraj::apps {
 
@@ -17,6 +18,12 @@ struct CheckOptions {
 
 /// The JSON form of a problem as understood (radians, metres, local frame, resolved paths).
 nlohmann::json problemJson(const ProblemSpec& problem);
+
+/// The vehicle's attitude resting at a boundary state (`which` = "start" / "goal" names it in
+/// messages). Throws InputError naming the problem file when it cannot rest there.
+models::AttitudeResult restingAttitude(const models::TerrainFollowingModel& model,
+                                       const BoundaryState& state, const char* which,
+                                       const ProblemSpec& problem);
 
 /// Loads the problem and its terrain and checks the start and goal against it. Throws
 /// InputError naming the file / key / value at fault.

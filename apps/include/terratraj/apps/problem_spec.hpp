@@ -196,6 +196,9 @@ struct SolverSpec {
   int max_iterations = 100;              ///< >= 1
   double tolerance_position_m = 0.001;   ///< terminal position error [m], > 0
   double tolerance_heading_rad = 0.001;  ///< terminal heading error [rad], > 0
+  double tolerance_lagrangian_gradient = 0.1;  ///< |dJ/dq + lambda' dc/dq|_inf, > 0
+  int yaw_rate_order = 4;  ///< parametric solvers: yaw-rate polynomial order, in [1, 8]
+  int speed_order = 1;     ///< parametric solvers: speed polynomial order, in [1, 8]
   std::optional<double> time_limit_s;    ///< wall-clock limit [s], >= 0; absent = none
 };
 
