@@ -119,6 +119,30 @@ nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,
   return json;
 }
 
+nlohmann::json solveDemoProblem(const terrain::ElevationMap& map, const std::filesystem::path& csv,
+                                CommandContext& context) {
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const std::unique_ptr<models::TerrainFollowingModel> vehicle =
+      makeTerrainFollowingModel(VehicleModelKind::kRockerBogie, surface);
+  ocp::BoundaryValueProblem bvp;
+  const double x0 = 0.15 * map.geometry().width(), y0 = 0.4 * map.geometry().height();
+  bvp.start = {x0, y0, 0.0, 0.5, 0.0};
+  bvp.goal = {x0 + 6.0, y0 + 1.5, 0.3, 0.5, 0.0};
+  bvp.cost = {ocp::CostKind::kSlopeDwell, 1.0};
+  bvp.limits.kappa_max = 2.0;
+  bvp.limits.sigma_max = 2.0;
+  bvp.limits.pitch_max = bvp.limits.roll_max = 0.5;
+  const ocp::BoundaryValueOptions options;
+  context.log->info("demo: solving a boundary-value problem with newton (rocker_bogie)");
+  const ocp::BoundaryValueSolution solution = ocp::solveBoundaryValue(*vehicle, bvp, options, &map);
+  nlohmann::json report = solveReportJson(solution, options);
+  if (solution.verified.ok) {
+    models::writeTrajectoryCsv(solution.verified.trajectory, csv);
+    report["file"] = csv.string();
+  }
+  return report;
+}
+
 int runSolve(const SolveOptions& options, CommandContext& context) {
   ProblemSpec problem = loadProblem(options.problem);
   if (options.method) {

@@ -1,5 +1,7 @@
 #include "terratraj/apps/terrain_commands.hpp"
 
+#include "terratraj/apps/solve_command.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -136,6 +138,8 @@ int runDemo(const DemoOptions& options, CommandContext& context) {
         {"file", tif.string()},
         {"statistics", terrainStatisticsJson(stats)}}},
   };
+  const std::filesystem::path solve_file = options.out_dir / "solve.csv";
+  summary["solve"] = solveDemoProblem(map, solve_file, context);
   writeJsonFile(summary, summary_file);
   context.log->info("demo: wrote {}", summary_file.string());
   if (context.json) {
@@ -144,8 +148,17 @@ int runDemo(const DemoOptions& options, CommandContext& context) {
     context.out << "terratraj demo: generated terrain '"
                 << terrain::terrainKindName(options.generator.kind) << "' (seed "
                 << options.generator.seed << ")\n"
-                << terrainStatisticsText(stats) << "  files      " << tif.string() << ", "
-                << summary_file.string() << '\n';
+                << terrainStatisticsText(stats);
+    const nlohmann::json& solve = summary["solve"];
+    context.out << "solve (newton, rocker_bogie, 6.2 m, slope dwell alpha 1): "
+                << solve["status"].get<std::string>() << " in " << solve["iterations"]
+                << " iterations, " << solve["solve_time_ms"].get<double>() << " ms";
+    if (solve["final_time_s"].is_number()) {
+      context.out << "; t_f " << solve["final_time_s"].get<double>() << " s, terminal error "
+                  << solve["terminal_error"]["position_m"].get<double>() << " m";
+    }
+    context.out << "\n  files      " << tif.string() << ", " << summary_file.string() << ", "
+                << solve_file.string() << '\n';
   }
   return kExitSuccess;
 }
