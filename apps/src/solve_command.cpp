@@ -46,8 +46,8 @@ ocp::BoundaryValueProblem boundaryValueProblem(const ProblemSpec& problem) {
   ocp::BoundaryValueProblem bvp;
   bvp.start = toState(problem.start);
   bvp.goal = toState(problem.goal);
-  bvp.cost.kind =
-      problem.cost.kind == CostKind::kSlopeDwell ? ocp::CostKind::kSlopeDwell : ocp::CostKind::kTime;
+  bvp.cost.kind = problem.cost.kind == CostKind::kSlopeDwell ? ocp::CostKind::kSlopeDwell
+                                                             : ocp::CostKind::kTime;
   bvp.cost.alpha = problem.cost.alpha;
   bvp.orders = {problem.solver.yaw_rate_order, problem.solver.speed_order};
   bvp.limits = problem.vehicle.limits;
@@ -58,8 +58,8 @@ ocp::BoundaryValueOptions boundaryValueOptions(const ProblemSpec& problem) {
   ocp::BoundaryValueOptions options;
   const std::optional<ocp::BoundaryValueMethod> method = parametricMethod(problem.solver.method);
   if (!method) {
-    throw InputError(problem.source_file.string() + ": solver.method: " +
-                     solverMethodName(problem.solver.method) +
+    throw InputError(problem.source_file.string() +
+                     ": solver.method: " + solverMethodName(problem.solver.method) +
                      " is a direct-transcription method, which `solve` does not provide yet; "
                      "use newton, newton_fd, ipopt or ceres");
   }
@@ -105,8 +105,8 @@ nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,
       {"max_abs_roll_rad", number(v.max_abs_roll)},
       {"max_speed", number(v.max_speed)},
       {"constraint_violation", number(v.violation.amount)},
-      {"violated_limit", v.violation.limit.empty() ? nlohmann::json(nullptr)
-                                                   : nlohmann::json(v.violation.limit)},
+      {"violated_limit",
+       v.violation.limit.empty() ? nlohmann::json(nullptr) : nlohmann::json(v.violation.limit)},
       {"slope_dwell_rad2_s", number(v.slope_dwell)},
       {"verified", v.ok},
       {"tolerance",
@@ -170,8 +170,8 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
     roll_table = models::readRollCurvatureTable(*problem.vehicle.tables.roll_curvature);
     bvp.tables.roll_curvature = &*roll_table;
   }
-  context.log->info("solving with {} on the {} model", ocp::boundaryValueMethodName(solve_options.method),
-                    vehicle->name());
+  context.log->info("solving with {} on the {} model",
+                    ocp::boundaryValueMethodName(solve_options.method), vehicle->name());
   const ocp::BoundaryValueSolution solution =
       ocp::solveBoundaryValue(*vehicle, bvp, solve_options, &map);
   if (options.out && solution.verified.ok) {
@@ -182,9 +182,9 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
     context.out << report.dump(2) << '\n';
   } else {
     const ocp::VerifiedTrajectory& v = solution.verified;
-    context.out << ocp::solveStatusName(solution.status) << " (" << report["method"].get<std::string>()
-                << ", " << solution.solver.iterations << " iterations, " << solution.total_time_ms
-                << " ms)";
+    context.out << ocp::solveStatusName(solution.status) << " ("
+                << report["method"].get<std::string>() << ", " << solution.solver.iterations
+                << " iterations, " << solution.total_time_ms << " ms)";
     if (!solution.reason.empty()) context.out << ": " << solution.reason;
     context.out << '\n';
     if (v.ok) {

@@ -89,8 +89,7 @@ void prepareResult(const Eigen::Vector3d& initial, int parameter_count, bool sen
   result.final_state = initial;
   if (sensitivities) {
     result.sensitivity.setZero(3, parameter_count);
-    result.sample_sensitivity.setZero(3 * static_cast<Eigen::Index>(sample_count),
-                                      parameter_count);
+    result.sample_sensitivity.setZero(3 * static_cast<Eigen::Index>(sample_count), parameter_count);
     result.integral_sensitivity.setZero(parameter_count);
   } else {
     result.sensitivity.resize(0, 0);
@@ -176,9 +175,9 @@ class FixedStepScheme {
     if (integrand_ != nullptr) {
       Eigen::Vector3d dl_dstate;
       Eigen::Vector2d dl_dinput;
-      rate.integral = integrand_->evaluate(t, work_.rates, v, omega,
-                                           sensitivities_ ? &dl_dstate : nullptr,
-                                           sensitivities_ ? &dl_dinput : nullptr);
+      rate.integral =
+          integrand_->evaluate(t, work_.rates, v, omega, sensitivities_ ? &dl_dstate : nullptr,
+                               sensitivities_ ? &dl_dinput : nullptr);
       if (sensitivities_) {
         rate.integral_s.noalias() = dl_dstate.transpose() * at.s;
         rate.integral_s.noalias() += dl_dinput(0) * work_.dv_dq.transpose();
@@ -278,11 +277,14 @@ void RoverIntegrator::integrateFixedStep(const Eigen::Vector3d& initial,
       }
       double v = 0.0, omega = 0.0;
       controls.evaluate(ts, v, omega, nullptr, nullptr);
-      const AttitudeStatus status = kinematics_.rates(at_sample.x, v, omega, workspace_, sample_rates);
+      const AttitudeStatus status =
+          kinematics_.rates(at_sample.x, v, omega, workspace_, sample_rates);
       if (status != AttitudeStatus::kOk) return status;
       result.samples.samples.push_back(
           detail::makeSample(ts, at_sample.x, v, omega, sample_rates.attitude.attitude));
-      if (sensitivities) result.sample_sensitivity.middleRows(3 * static_cast<Eigen::Index>(next_sample), 3) = at_sample.s;
+      if (sensitivities)
+        result.sample_sensitivity.middleRows(3 * static_cast<Eigen::Index>(next_sample), 3) =
+            at_sample.s;
       ++next_sample;
     }
     return AttitudeStatus::kOk;

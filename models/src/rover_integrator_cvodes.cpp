@@ -103,8 +103,8 @@ int integrandSensitivityRhs(int ns, realtype t, N_Vector y, N_Vector* ys, N_Vect
   data.integrand->evaluate(t, data.rates, v, omega, &dl_dstate, &dl_dinput);
   for (int i = 0; i < ns; ++i) {
     const Eigen::Map<const Eigen::Vector3d> s(N_VGetArrayPointer(ys[i]));
-    N_VGetArrayPointer(yqs_dot[i])[0] = dl_dstate.dot(s) + dl_dinput(0) * data.dv_dq(i) +
-                                        dl_dinput(1) * data.domega_dq(i);
+    N_VGetArrayPointer(yqs_dot[i])[0] =
+        dl_dstate.dot(s) + dl_dinput(0) * data.dv_dq(i) + dl_dinput(1) * data.domega_dq(i);
   }
   return 0;
 }

@@ -23,11 +23,11 @@ std::optional<std::string> validateProblem(const BoundaryValueProblem& problem) 
            " is outside [1, 8]";
   }
   if (problem.orders.speed < 1 || problem.orders.speed > 8) {
-    return "speed polynomial order " + std::to_string(problem.orders.speed) +
-           " is outside [1, 8]";
+    return "speed polynomial order " + std::to_string(problem.orders.speed) + " is outside [1, 8]";
   }
   if (problem.orders.yaw_rate + problem.orders.speed - 1 < 3) {
-    return "the controls have " + std::to_string(problem.orders.yaw_rate + problem.orders.speed - 1) +
+    return "the controls have " +
+           std::to_string(problem.orders.yaw_rate + problem.orders.speed - 1) +
            " unknowns, fewer than the 3 terminal constraints (x, y, heading): raise "
            "solver.yaw_rate_order";
   }
@@ -41,7 +41,8 @@ std::optional<std::string> validateProblem(const BoundaryValueProblem& problem) 
   }
   const double dx = problem.goal.x - problem.start.x;
   const double dy = problem.goal.y - problem.start.y;
-  if (std::hypot(dx, dy) < 1e-6 && std::abs(wrapAngle(problem.goal.heading - problem.start.heading)) < 1e-6) {
+  if (std::hypot(dx, dy) < 1e-6 &&
+      std::abs(wrapAngle(problem.goal.heading - problem.start.heading)) < 1e-6) {
     return "start and goal are the same pose: there is nothing to solve";
   }
   return std::nullopt;

@@ -4,11 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#if __has_include("terratraj/ocp/ceres_solver.hpp") && defined(TERRATRAJ_NLP_READY)
 #include "terratraj/ocp/ceres_solver.hpp"
 #include "terratraj/ocp/ipopt_solver.hpp"
-#define TEMP_NLP 1
-#endif
 #include "terratraj/ocp/newton_solver.hpp"
 #include "terratraj/ocp/path_constraints.hpp"
 
@@ -44,7 +41,6 @@ SolveResult runSolver(const models::TerrainFollowingModel& vehicle,
       newton.hessian_step = 1e-4;
       return solveNewton(model, {guess.q, guess.lambda, Eigen::MatrixXd()}, newton, "newton_fd");
     }
-#ifdef TEMP_NLP
     case BoundaryValueMethod::kIpopt: {
       ParametricTrajectoryModel model(vehicle, problem, model_options);
       const PathConstraints constraints(problem.limits, problem.tables);
@@ -63,17 +59,14 @@ SolveResult runSolver(const models::TerrainFollowingModel& vehicle,
       ceres.time_limit_s = options.time_limit_s;
       return solveCeres(model, guess.q, ceres);
     }
-#else
-    default: break;
-#endif
   }
   return {};
 }
 
 std::string describe(const LimitViolation& violation) {
   std::ostringstream text;
-  text << "limit " << violation.limit << " exceeded by " << violation.amount << " at t = "
-       << violation.t << " s";
+  text << "limit " << violation.limit << " exceeded by " << violation.amount
+       << " at t = " << violation.t << " s";
   return text.str();
 }
 
@@ -135,8 +128,8 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
   if (error.head<2>().norm() > options.criteria.position_m + slack ||
       std::abs(error.z()) > options.criteria.heading_rad + slack) {
     std::ostringstream text;
-    text << "the re-simulated trajectory misses the goal by " << error.head<2>().norm()
-         << " m and " << std::abs(error.z()) << " rad";
+    text << "the re-simulated trajectory misses the goal by " << error.head<2>().norm() << " m and "
+         << std::abs(error.z()) << " rad";
     return finish(SolveStatus::kDiverged, text.str());
   }
   if (solution.verified.violation.amount > options.limit_tolerance) {

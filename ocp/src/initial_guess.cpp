@@ -51,8 +51,7 @@ Eigen::VectorXd heuristicGuess(const BoundaryValueProblem& problem) {
   const double turn = wrapAngle(g.heading - s.heading);
   // Nagy & Kelly's arc-length estimate, with the heading changes at both ends.
   const double length =
-      distance * (1.0 + (bearing * bearing + (turn - bearing) * (turn - bearing)) / 5.0) +
-      0.1;
+      distance * (1.0 + (bearing * bearing + (turn - bearing) * (turn - bearing)) / 5.0) + 0.1;
 
   const ParametricControls layout(s, g, problem.orders);
   Eigen::VectorXd q = Eigen::VectorXd::Zero(layout.parameterCount());
@@ -64,8 +63,8 @@ Eigen::VectorXd heuristicGuess(const BoundaryValueProblem& problem) {
     if (tau > 0.75) return g.v + (cruise - g.v) * (1.0 - tau) / 0.25;
     return cruise;
   };
-  const Eigen::VectorXd speed =
-      fitClosedPolynomial(speed_order, g.v - s.v, [&](double tau) { return speed_target(tau) - s.v; });
+  const Eigen::VectorXd speed = fitClosedPolynomial(
+      speed_order, g.v - s.v, [&](double tau) { return speed_target(tau) - s.v; });
   q.segment(layout.speedIndex(), speed.size()) = speed;
   ParametricControls fitted(s, g, problem.orders);
   Eigen::VectorXd probe = q;
@@ -81,11 +80,9 @@ Eigen::VectorXd heuristicGuess(const BoundaryValueProblem& problem) {
   // Yaw rate: turn toward the goal, then align with its heading (heading(tau) =
   // turn tau + 3 (2 bearing - turn) (tau - tau^2)...): omega = turn / t_f + A (1 - 2 tau).
   const double a = 6.0 * (bearing - 0.5 * turn) / tf;
-  const Eigen::VectorXd yaw = fitClosedPolynomial(problem.orders.yaw_rate, g.omega - s.omega,
-                                                  [&](double tau) {
-                                                    return turn / tf + a * (1.0 - 2.0 * tau) -
-                                                           s.omega;
-                                                  });
+  const Eigen::VectorXd yaw =
+      fitClosedPolynomial(problem.orders.yaw_rate, g.omega - s.omega,
+                          [&](double tau) { return turn / tf + a * (1.0 - 2.0 * tau) - s.omega; });
   q.head(yaw.size()) = yaw;
   q(layout.finalTimeIndex()) = tf;
   return q;
@@ -133,10 +130,11 @@ InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
   }
   guess.integrations = model.integrations();
   if (!solved) {
-    guess.reason = "no flat-ground trajectory of this polynomial form reaches the goal from "
-                   "the heuristic guess (yaw-rate order " +
-                   std::to_string(problem.orders.yaw_rate) + ", speed order " +
-                   std::to_string(problem.orders.speed) + ")";
+    guess.reason =
+        "no flat-ground trajectory of this polynomial form reaches the goal from "
+        "the heuristic guess (yaw-rate order " +
+        std::to_string(problem.orders.yaw_rate) + ", speed order " +
+        std::to_string(problem.orders.speed) + ")";
     return guess;
   }
   guess.ok = true;

@@ -177,8 +177,8 @@ SolveResult solveNewton(ParametricTrajectoryModel& model, const NewtonStart& sta
         // Second-order correction against the Maratos effect: project back onto c = 0.
         const Eigen::MatrixXd& a = current.jacobian;
         const Eigen::VectorXd soc =
-            -a.transpose() * (a * a.transpose()).completeOrthogonalDecomposition().solve(
-                                 trial.terminal_error);
+            -a.transpose() *
+            (a * a.transpose()).completeOrthogonalDecomposition().solve(trial.terminal_error);
         Eigen::VectorXd q_soc = q_next + soc;
         if (q_soc(itf) > options.min_final_time_s && model.evaluate(q_soc, mode, correction) &&
             merit(correction, nu) <= merit0 + 1e-4 * alpha * std::min(slope, 0.0)) {
@@ -196,7 +196,8 @@ SolveResult solveNewton(ParametricTrajectoryModel& model, const NewtonStart& sta
                         (trial.ok() ? std::string("no decrease") : trial.message) + ")");
     }
     if (options.hessian == HessianApproximation::kBfgs) {
-      const Eigen::VectorXd grad_old = current.gradient + current.jacobian.transpose() * lambda_next;
+      const Eigen::VectorXd grad_old =
+          current.gradient + current.jacobian.transpose() * lambda_next;
       const Eigen::VectorXd grad_new = trial.gradient + trial.jacobian.transpose() * lambda_next;
       dampedBfgsUpdate(q_next - q, grad_new - grad_old, w);
     }

@@ -18,7 +18,7 @@ struct ClosedPolynomial {
     value = d1 = d2 = 0.0;
     double top = delta;
     for (int k = 1; k < order; ++k) top -= free[k - 1];
-    double power = 1.0;  // tau^(k-1)
+    double power = 1.0;   // tau^(k-1)
     double power2 = 0.0;  // tau^(k-2)
     for (int k = 1; k <= order; ++k) {
       const double c = k < order ? free[k - 1] : top;

@@ -58,13 +58,13 @@ bool ParametricTrajectoryModel::integrate(const Eigen::VectorXd& q, bool sensiti
   ++integrations_;
   if (out.integration.status != models::IntegrationStatus::kOk) {
     out.status = out.integration.status;
-    out.message = out.integration.message + " at t = " +
-                  std::to_string(out.integration.t_reached) + " s";
+    out.message =
+        out.integration.message + " at t = " + std::to_string(out.integration.t_reached) + " s";
     return false;
   }
   out.terminal_state = out.integration.final_state;
-  out.terminal_error = out.terminal_state -
-                       Eigen::Vector3d(problem_.goal.x, problem_.goal.y, problem_.goal.heading);
+  out.terminal_error =
+      out.terminal_state - Eigen::Vector3d(problem_.goal.x, problem_.goal.y, problem_.goal.heading);
   out.terminal_error.z() = wrapAngle(out.terminal_error.z());
   out.running_cost = dwell ? out.integration.integral : 0.0;
   out.cost = tf + out.running_cost;
@@ -107,8 +107,7 @@ bool ParametricTrajectoryModel::evaluate(const Eigen::VectorXd& q, DerivativeMod
 
 bool ParametricTrajectoryModel::evaluateWithPath(const Eigen::VectorXd& q, bool derivatives,
                                                  const std::vector<double>& tau,
-                                                 ParametricEvaluation& out,
-                                                 PathEvaluation& path) {
+                                                 ParametricEvaluation& out, PathEvaluation& path) {
   const int n = parameterCount();
   const int itf = finalTimeIndex();
   const double tf = q.size() == n ? q(itf) : 0.0;
@@ -126,8 +125,8 @@ bool ParametricTrajectoryModel::evaluateWithPath(const Eigen::VectorXd& q, bool 
     const ControlRates rates = controls_.rates(point.t, dv_dot_dq_.data(), domega_dot_dq_.data());
     point.v_dot = rates.v_dot;
     point.omega_dot = rates.omega_dot;
-    const models::AttitudeStatus status = kinematics_.rates(point.state, point.v, point.omega,
-                                                            terminal_workspace_, terminal_rates_);
+    const models::AttitudeStatus status =
+        kinematics_.rates(point.state, point.v, point.omega, terminal_workspace_, terminal_rates_);
     if (status != models::AttitudeStatus::kOk) {
       out.status = models::IntegrationStatus::kNoTerrain;
       out.message = std::string("attitude along the path: ") + models::attitudeStatusName(status);
@@ -138,7 +137,8 @@ bool ParametricTrajectoryModel::evaluateWithPath(const Eigen::VectorXd& q, bool 
     // Points sit at fixed tau: d/dt_f = (d/dt_f at fixed t) + tau d/dt.
     Eigen::Matrix<double, kPathVariables, Eigen::Dynamic>& d = path.derivatives[i];
     d.resize(kPathVariables, n);
-    d.topRows<3>() = out.integration.sample_sensitivity.middleRows(3 * static_cast<Eigen::Index>(i), 3);
+    d.topRows<3>() =
+        out.integration.sample_sensitivity.middleRows(3 * static_cast<Eigen::Index>(i), 3);
     d.block(0, itf, 3, 1) += tau[i] * terminal_rates_.rate;
     d.row(3) = dv_dq_.transpose();
     d.row(4) = domega_dq_.transpose();

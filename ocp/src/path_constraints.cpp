@@ -11,8 +11,9 @@ namespace {
 enum Var { kX = 0, kY, kHeading, kV, kOmega, kVDot, kOmegaDot };
 
 constexpr std::array<const char*, 16> kRowNames{
-    "v_max",     "v_min",     "a_max",     "a_max",     "omega_max",      "omega_max",
-    "kappa_max", "kappa_max", "sigma_max", "sigma_max", "pitch_max",      "pitch_max",
+    "v_max",     "v_min",     "a_max",       "a_max",
+    "omega_max", "omega_max", "kappa_max",   "kappa_max",
+    "sigma_max", "sigma_max", "pitch_max",   "pitch_max",
     "roll_max",  "roll_max",  "table_pitch", "table_roll_curvature"};
 
 // Below this speed [m/s] curvature is not defined; the table's curvature argument is clamped.

@@ -36,8 +36,8 @@ VerifiedTrajectory verifyParametricSolution(const models::TerrainFollowingModel&
                        &dwell);
   out.trajectory = result.samples;
   if (result.status != models::IntegrationStatus::kOk) {
-    out.message = std::string("re-simulation: ") + result.message + " at t = " +
-                  std::to_string(result.t_reached) + " s";
+    out.message = std::string("re-simulation: ") + result.message +
+                  " at t = " + std::to_string(result.t_reached) + " s";
     return out;
   }
   out.ok = true;
@@ -47,7 +47,7 @@ VerifiedTrajectory verifyParametricSolution(const models::TerrainFollowingModel&
   out.terminal_error.z() = wrapAngle(out.terminal_error.z());
   out.slope_dwell = result.integral;
   out.cost = tf + (problem.cost.kind == CostKind::kSlopeDwell ? problem.cost.alpha * result.integral
-                                                               : 0.0);
+                                                              : 0.0);
   out.length = out.trajectory.planarLength();
 
   const PathConstraints constraints(problem.limits, problem.tables);

@@ -308,10 +308,9 @@ TEST_F(CliTest, SolveWritesTheReportAndTheTrajectory) {
       run({"solve", path("problem.yaml"), "--json", "--out", path("trajectory.csv")});
   ASSERT_EQ(ok.status, kExitSuccess) << ok.err << ok.out;
   const nlohmann::json json = nlohmann::json::parse(ok.out);
-  for (const char* key :
-       {"status", "method", "iterations", "solve_time_ms", "final_time_s", "cost", "length_m",
-        "terminal_error", "max_abs_pitch_rad", "max_abs_roll_rad", "max_speed",
-        "constraint_violation", "history"}) {
+  for (const char* key : {"status", "method", "iterations", "solve_time_ms", "final_time_s", "cost",
+                          "length_m", "terminal_error", "max_abs_pitch_rad", "max_abs_roll_rad",
+                          "max_speed", "constraint_violation", "history"}) {
     EXPECT_TRUE(json.contains(key)) << key;
   }
   EXPECT_EQ(json["status"], "converged");
@@ -352,8 +351,9 @@ TEST_F(CliTest, SolveWritesTheReportAndTheTrajectory) {
       run({"solve", path("problem.yaml"), "--method", "collocation", "--json"});
   EXPECT_EQ(transcription.status, kExitBadInput);
   EXPECT_EQ(nlohmann::json::parse(transcription.out)["status"], "error");
-  write("offmap.yaml", "terrain:\n  generate: {kind: hill, rows: 64, cols: 64, cell: 0.25}\n"
-                       "start: {x: 3.0, y: 6.0, v: 0.5}\ngoal: {x: 30.0, y: 6.0, v: 0.5}\n");
+  write("offmap.yaml",
+        "terrain:\n  generate: {kind: hill, rows: 64, cols: 64, cell: 0.25}\n"
+        "start: {x: 3.0, y: 6.0, v: 0.5}\ngoal: {x: 30.0, y: 6.0, v: 0.5}\n");
   EXPECT_EQ(run({"solve", path("offmap.yaml")}).status, kExitBadInput);
 }
 

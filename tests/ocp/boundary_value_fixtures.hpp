@@ -80,8 +80,8 @@ inline std::vector<BoundaryValueProblem> roughLattice() {
     for (int j = 0; j < 5; ++j) {
       for (int k = 0; k < 5; ++k) {
         if (std::abs(k - j) > 2) continue;
-        candidates.push_back(cruise(2.0 + 2.0 * i, 4.5 + 0.75 * j, 0.0, 2.0 + 2.0 * (i + 1),
-                                    4.5 + 0.75 * k, 0.0));
+        candidates.push_back(
+            cruise(2.0 + 2.0 * i, 4.5 + 0.75 * j, 0.0, 2.0 + 2.0 * (i + 1), 4.5 + 0.75 * k, 0.0));
       }
     }
   }

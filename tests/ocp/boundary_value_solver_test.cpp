@@ -134,5 +134,33 @@ TEST(BoundaryValueSolver, NewtonFdAndNewtonReachTheSameOptimum) {
   EXPECT_GE(compared, 5);
 }
 
+// The four solvers on one formulation reach the same optimum where they converge (rough
+// terrain, rocker-bogie, slope dwell so that the optimum is not at a limit of the form).
+TEST(BoundaryValueSolver, AllFourSolversReachTheSameOptimum) {
+  const terrain::ElevationMap map = fixtures::roughMap();
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::RockerBogieAttitudeModel vehicle(surface);
+  const std::vector<BoundaryValueProblem> lattice = fixtures::roughLattice();
+  int agreeing = 0;
+  for (int i = 0; i < 4; ++i) {
+    BoundaryValueProblem problem = lattice[i];
+    problem.cost = {CostKind::kSlopeDwell, 1.0};
+    std::vector<double> costs;
+    for (const BoundaryValueMethod method :
+         {BoundaryValueMethod::kNewton, BoundaryValueMethod::kNewtonFd, BoundaryValueMethod::kIpopt,
+          BoundaryValueMethod::kCeres}) {
+      BoundaryValueOptions options;
+      options.method = method;
+      const BoundaryValueSolution s = solveBoundaryValue(vehicle, problem, options, &map);
+      if (s.status == SolveStatus::kConverged) costs.push_back(s.verified.cost);
+    }
+    if (costs.size() < 4) continue;
+    ++agreeing;
+    const auto [low, high] = std::minmax_element(costs.begin(), costs.end());
+    EXPECT_LT(*high - *low, 1e-3 * *low) << "edge " << i;
+  }
+  EXPECT_GE(agreeing, 3);
+}
+
 }  // namespace
 }  // namespace terratraj::ocp

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "terratraj/models/rocker_bogie_attitude_model.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
+#include "terratraj/models/rocker_bogie_attitude_model.hpp"
 #include "terratraj/ocp/flat_ground_model.hpp"
 #include "terratraj/ocp/initial_guess.hpp"
 #include "terratraj/ocp/newton_solver.hpp"
@@ -130,7 +130,8 @@ TEST_F(RoughTerrain, SensitivityDerivativesMatchFiniteDifferences) {
         // there the discrete map differs by the discretisation error.
         const double exact = k == rk4.finalTimeIndex() ? 1e-4 : 1e-6;
         EXPECT_LT((discrete.jacobian.col(k) - dc).norm(), exact * scale) << "column " << k;
-        EXPECT_NEAR(discrete.gradient(k), dj, std::max(exact, 2e-5) * std::max(1.0, std::abs(dj))) << k;
+        EXPECT_NEAR(discrete.gradient(k), dj, std::max(exact, 2e-5) * std::max(1.0, std::abs(dj)))
+            << k;
         EXPECT_LT((adaptive.jacobian.col(k) - dc).norm(), 1e-4 * scale) << "column " << k;
         EXPECT_NEAR(adaptive.gradient(k), dj, 1e-4 * std::max(1.0, std::abs(dj))) << k;
       }

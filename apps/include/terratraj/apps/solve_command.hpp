@@ -18,7 +18,7 @@ namespace terratraj::apps {
 /// Options of `terratraj solve`.
 struct SolveOptions {
   std::filesystem::path problem;
-  std::optional<std::string> method;        ///< overrides solver.method
+  std::optional<std::string> method;         ///< overrides solver.method
   std::optional<std::filesystem::path> out;  ///< trajectory CSV
 };
 

@@ -86,8 +86,8 @@ struct IntegrationResult {
   Eigen::MatrixXd sample_sensitivity;
   double integral = 0.0;  ///< integral of the running integrand over [0, t_reached], if given
   Eigen::RowVectorXd integral_sensitivity;  ///< d integral / dq, with sensitivities
-  long steps = 0;                                         ///< steps taken
-  long rhs_evaluations = 0;                               ///< kinematics evaluations
+  long steps = 0;                           ///< steps taken
+  long rhs_evaluations = 0;                 ///< kinematics evaluations
 };
 
 /// Integrates rover kinematics. Not thread-safe: use one per thread.

@@ -41,9 +41,9 @@ struct BoundaryValueOptions {
     options.absolute_tolerance = 1e-9;
     return options;
   }();
-  double newton_fd_step = 0.01;        ///< RK4 step of newton_fd [s]
-  int path_points = 41;                ///< ipopt: points where path constraints are imposed
-  double limit_tolerance = 1e-3;       ///< violation tolerated before kInfeasible (limit units)
+  double newton_fd_step = 0.01;   ///< RK4 step of newton_fd [s]
+  int path_points = 41;           ///< ipopt: points where path constraints are imposed
+  double limit_tolerance = 1e-3;  ///< violation tolerated before kInfeasible (limit units)
   VerificationOptions verification;
 };
 
@@ -53,7 +53,7 @@ struct BoundaryValueSolution {
   std::string reason;                        ///< why, for anything but kConverged
   SolveResult solver;                        ///< the solver's own account
   InitialGuess initial_guess;
-  VerifiedTrajectory verified;  ///< the re-simulation of solver.q (ok false if not possible)
+  VerifiedTrajectory verified;        ///< the re-simulation of solver.q (ok false if not possible)
   double total_time_ms = 0.0;         ///< initial guess + solver [ms]
   double verification_time_ms = 0.0;  ///< the re-simulation [ms]
 };

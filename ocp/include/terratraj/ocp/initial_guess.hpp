@@ -14,11 +14,11 @@ namespace terratraj::ocp {
 
 /// Where a solve starts.
 struct InitialGuess {
-  bool ok = false;      ///< false: the flat problem has no solution of this form (reason)
+  bool ok = false;  ///< false: the flat problem has no solution of this form (reason)
   std::string reason;
   Eigen::VectorXd q;
   Eigen::Vector3d lambda = Eigen::Vector3d::Zero();
-  Eigen::MatrixXd hessian;  ///< empty when the flat optimisation did not converge
+  Eigen::MatrixXd hessian;    ///< empty when the flat optimisation did not converge
   bool flat_optimum = false;  ///< q is the flat-ground optimum (else the constrained solution)
   long integrations = 0;
 };

@@ -40,9 +40,9 @@ struct ParametricEvaluation {
   Eigen::Vector3d terminal_state = Eigen::Vector3d::Zero();  ///< (x, y, heading) at t_f
   Eigen::Vector3d terminal_error = Eigen::Vector3d::Zero();  ///< c(q); heading wrapped
   double cost = 0.0;                                         ///< J(q) [s]
-  double running_cost = 0.0;  ///< integral of alpha (roll^2 + pitch^2) dt, 0 for kTime
-  Eigen::MatrixXd jacobian;   ///< 3 x n: dc / dq (with derivatives)
-  Eigen::VectorXd gradient;   ///< n: dJ / dq (with derivatives)
+  double running_cost = 0.0;              ///< integral of alpha (roll^2 + pitch^2) dt, 0 for kTime
+  Eigen::MatrixXd jacobian;               ///< 3 x n: dc / dq (with derivatives)
+  Eigen::VectorXd gradient;               ///< n: dJ / dq (with derivatives)
   models::IntegrationResult integration;  ///< storage for the integrator
 
   bool ok() const { return status == models::IntegrationStatus::kOk; }
@@ -79,9 +79,8 @@ class ParametricTrajectoryModel {
 
   /// As evaluate() with kNone or kSensitivity, and also the points at the fractions `tau`
   /// (ascending, in [0, 1]) of t_f, from the same integration.
-  bool evaluateWithPath(const Eigen::VectorXd& q, bool derivatives,
-                        const std::vector<double>& tau, ParametricEvaluation& out,
-                        PathEvaluation& path);
+  bool evaluateWithPath(const Eigen::VectorXd& q, bool derivatives, const std::vector<double>& tau,
+                        ParametricEvaluation& out, PathEvaluation& path);
 
   /// Hessian of the Lagrangian J + lambda' c at q by finite differences with step h:
   /// of sensitivity gradients (kSensitivity: n integrations) or of values (kFiniteDifference,

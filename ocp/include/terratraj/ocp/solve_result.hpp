@@ -45,11 +45,11 @@ struct SolveResult {
   int iterations = 0;
   std::vector<IterationRecord> history;
   double solve_time_ms = 0.0;
-  Eigen::VectorXd q;                                      ///< final control unknowns
-  Eigen::Vector3d lambda = Eigen::Vector3d::Zero();       ///< final multipliers
-  double cost = 0.0;                                      ///< J at q (solver's own figure)
+  Eigen::VectorXd q;                                         ///< final control unknowns
+  Eigen::Vector3d lambda = Eigen::Vector3d::Zero();          ///< final multipliers
+  double cost = 0.0;                                         ///< J at q (solver's own figure)
   Eigen::Vector3d terminal_error = Eigen::Vector3d::Zero();  ///< c(q) (solver's own figure)
-  long integrations = 0;  ///< trajectory integrations used
+  long integrations = 0;                                     ///< trajectory integrations used
 };
 
 }  // namespace terratraj::ocp

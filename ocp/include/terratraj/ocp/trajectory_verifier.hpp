@@ -25,12 +25,12 @@ struct VerificationOptions {
 
 /// What the re-simulation found.
 struct VerifiedTrajectory {
-  bool ok = false;      ///< false: the trajectory could not be re-simulated (message)
+  bool ok = false;  ///< false: the trajectory could not be re-simulated (message)
   std::string message;
   models::Trajectory trajectory;  ///< samples every sample_dt and at t_f (the last row)
   Eigen::Vector3d terminal_error = Eigen::Vector3d::Zero();  ///< reached - goal, heading wrapped
-  double final_time = 0.0;   ///< [s]
-  double cost = 0.0;         ///< J re-integrated [s]
+  double final_time = 0.0;                                   ///< [s]
+  double cost = 0.0;                                         ///< J re-integrated [s]
   double slope_dwell = 0.0;  ///< integral of roll^2 + pitch^2 dt [rad^2 s]
   double length = 0.0;       ///< planar path length [m]
   double max_abs_pitch = 0.0, max_abs_roll = 0.0, max_speed = 0.0;

@@ -1,0 +1,51 @@
+#pragma once
+// solveIpopt(): the parametric boundary-value problem as a small dense NLP for Ipopt 3.11
+// (interior point, MUMPS, limited-memory quasi-Newton Hessian):
+//   min_q  J(q)
+//   s.t.   c(q) = 0                               (terminal x, y, heading; 3 rows)
+//          g(p(tau_i; q)) <= 0, i = 0..N-1        (PathConstraints rows at tau_i = i / (N - 1))
+//          t_f >= 1e-3 s
+// with exact first derivatives from the model's forward sensitivities. Each new q costs one
+// integration with sensitivities (evaluateWithPath when path constraints are imposed, else
+// evaluate); Ipopt's repeated calls at the same q are served from a cache.
+//
+// Thread safety: Ipopt 3.11 (with the sequential MUMPS of Debian) is NOT thread-safe; run at
+// most one solveIpopt() per process at a time. The model is not thread-safe either.
+
+#include <Eigen/Core>
+#include <optional>
+
+#include "terratraj/ocp/parametric_trajectory_model.hpp"
+#include "terratraj/ocp/path_constraints.hpp"
+#include "terratraj/ocp/solve_result.hpp"
+
+namespace terratraj::ocp {
+
+/// Settings of the Ipopt back-end.
+struct IpoptOptions {
+  /// Convergence: the terminal errors are checked on the final q; position_m and heading_rad
+  /// also set Ipopt's constr_viol_tol (a tenth of the smaller), lagrangian_gradient its
+  /// dual_inf_tol.
+  ConvergenceCriteria criteria;
+  int max_iterations = 100;  ///< Ipopt's max_iter, >= 0
+  std::optional<double>
+      time_limit_s;              ///< wall clock [s] (also Ipopt's max_cpu_time); absent = none
+  int path_points = 41;          ///< points tau_i where path constraints hold, >= 2
+  bool path_constraints = true;  ///< false: terminal equalities only
+  int print_level = 0;           ///< Ipopt's print_level, 0 (silent) to 12
+};
+
+/// Solves the problem of `model` from q0 with Ipopt. `constraints` (may be null: none) are the
+/// vehicle limits imposed at options.path_points points when options.path_constraints is set.
+/// Returns method "ipopt"; status kConverged only when Ipopt reports success (or an acceptable
+/// level) and the final terminal errors are within options.criteria; kMaxIterations for the
+/// iteration or time limit; kInfeasible when Ipopt detects a locally infeasible problem;
+/// kDiverged otherwise (including a q0 whose integration fails); kError for a q0 of the wrong
+/// size or invalid options. history holds one record per Ipopt iteration (lagrangian_gradient
+/// is Ipopt's scaled dual infeasibility inf_du, step its primal step size alpha_pr); lambda
+/// holds the multipliers of the 3 terminal equalities (Lagrangian J + lambda' c + ...).
+/// Never throws. Not thread-safe (see above).
+SolveResult solveIpopt(ParametricTrajectoryModel& model, const PathConstraints* constraints,
+                       const Eigen::VectorXd& q0, const IpoptOptions& options);
+
+}  // namespace terratraj::ocp

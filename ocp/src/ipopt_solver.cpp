@@ -1,0 +1,516 @@
+#include "terratraj/ocp/ipopt_solver.hpp"
+
+// Ipopt's headers need HAVE_CSTDDEF (set for this target in ocp/CMakeLists.txt).
+#include <coin/IpDenseVector.hpp>
+#include <coin/IpIpoptApplication.hpp>
+#include <coin/IpIpoptData.hpp>
+#include <coin/IpIteratesVector.hpp>
+#include <coin/IpTNLP.hpp>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <exception>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace terratraj::ocp {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+constexpr double kMinFinalTime = 1e-3;     // lower bound of t_f [s]
+constexpr double kIpoptInfinity = 1e19;    // Ipopt's default nlp_{lower,upper}_bound_inf
+constexpr std::size_t kRecentPoints = 32;  // evaluated points kept for the history records
+
+double elapsedSeconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+const char* ipoptStatusName(Ipopt::ApplicationReturnStatus status) {
+  switch (status) {
+    case Ipopt::Solve_Succeeded:
+      return "Solve_Succeeded";
+    case Ipopt::Solved_To_Acceptable_Level:
+      return "Solved_To_Acceptable_Level";
+    case Ipopt::Infeasible_Problem_Detected:
+      return "Infeasible_Problem_Detected";
+    case Ipopt::Search_Direction_Becomes_Too_Small:
+      return "Search_Direction_Becomes_Too_Small";
+    case Ipopt::Diverging_Iterates:
+      return "Diverging_Iterates";
+    case Ipopt::User_Requested_Stop:
+      return "User_Requested_Stop";
+    case Ipopt::Feasible_Point_Found:
+      return "Feasible_Point_Found";
+    case Ipopt::Maximum_Iterations_Exceeded:
+      return "Maximum_Iterations_Exceeded";
+    case Ipopt::Restoration_Failed:
+      return "Restoration_Failed";
+    case Ipopt::Error_In_Step_Computation:
+      return "Error_In_Step_Computation";
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      return "Maximum_CpuTime_Exceeded";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom:
+      return "Not_Enough_Degrees_Of_Freedom";
+    case Ipopt::Invalid_Problem_Definition:
+      return "Invalid_Problem_Definition";
+    case Ipopt::Invalid_Option:
+      return "Invalid_Option";
+    case Ipopt::Invalid_Number_Detected:
+      return "Invalid_Number_Detected";
+    case Ipopt::Unrecoverable_Exception:
+      return "Unrecoverable_Exception";
+    case Ipopt::NonIpopt_Exception_Thrown:
+      return "NonIpopt_Exception_Thrown";
+    case Ipopt::Insufficient_Memory:
+      return "Insufficient_Memory";
+    case Ipopt::Internal_Error:
+      return "Internal_Error";
+  }
+  return "unknown Ipopt status";
+}
+
+// A point Ipopt asked about, for the per-iteration history.
+struct RecentPoint {
+  Eigen::VectorXd q;
+  Eigen::Vector3d terminal_error;
+  double cost;
+};
+
+// The NLP in Ipopt's terms. Every callback works on one cached evaluation keyed on x (Ipopt
+// asks for f, grad f, g and its Jacobian at the same x): one integration per new x. No
+// callback lets an exception escape; an integration failure returns false, which Ipopt treats
+// as an evaluation error (it shortens the step, or stops at the starting point).
+class TrajectoryNlp final : public Ipopt::TNLP {
+ public:
+  TrajectoryNlp(ParametricTrajectoryModel& model, const PathConstraints* constraints,
+                const IpoptOptions& options, const Eigen::VectorXd& q0, Clock::time_point started,
+                std::vector<IterationRecord>& history)
+      : model_(model),
+        constraints_(constraints),
+        options_(options),
+        q0_(q0),
+        started_(started),
+        history_(history),
+        n_(model.parameterCount()),
+        rows_per_point_(constraints != nullptr ? constraints->count() : 0) {
+    if (rows_per_point_ > 0) {
+      const int points = options.path_points;
+      tau_.resize(static_cast<std::size_t>(points));
+      for (int i = 0; i < points; ++i) {
+        tau_[static_cast<std::size_t>(i)] = static_cast<double>(i) / (points - 1);
+      }
+      // The last point at exactly t_f.
+      tau_.back() = 1.0;
+    }
+    m_ = 3 + rows_per_point_ * static_cast<int>(tau_.size());
+    values_.resize(m_);
+    jacobian_.resize(m_, n_);
+  }
+
+  // Evaluates everything at x (n_ values) unless cached. Returns false when the integration
+  // fails or produces non-finite values; message() says why.
+  bool update(const double* x) {
+    const Eigen::Map<const Eigen::VectorXd> q(x, n_);
+    if (has_cache_ && q == cache_q_) return cache_ok_;
+    has_cache_ = true;
+    cache_q_ = q;
+    cache_ok_ = false;
+    message_.clear();
+    bool ok;
+    if (rows_per_point_ > 0) {
+      ok = model_.evaluateWithPath(cache_q_, true, tau_, eval_, path_);
+    } else {
+      ok = model_.evaluate(cache_q_, DerivativeMode::kSensitivity, eval_);
+    }
+    if (!ok) {
+      message_ = eval_.message;
+      return false;
+    }
+    values_.head<3>() = eval_.terminal_error;
+    jacobian_.topRows<3>() = eval_.jacobian;
+    for (std::size_t i = 0; i < tau_.size(); ++i) {
+      const Eigen::Index row = 3 + static_cast<Eigen::Index>(i) * rows_per_point_;
+      constraints_->evaluate(path_.points[i], values_.data() + row, &point_jacobian_);
+      jacobian_.middleRows(row, rows_per_point_) = point_jacobian_ * path_.derivatives[i];
+    }
+    if (!std::isfinite(eval_.cost) || !eval_.gradient.allFinite() || !values_.allFinite() ||
+        !jacobian_.allFinite()) {
+      message_ = "non-finite cost, constraints or derivatives";
+      return false;
+    }
+    recent_.push_back({cache_q_, eval_.terminal_error, eval_.cost});
+    if (recent_.size() > kRecentPoints) recent_.pop_front();
+    cache_ok_ = true;
+    return true;
+  }
+
+  const std::string& message() const { return message_; }
+  const ParametricEvaluation& evaluation() const { return eval_; }
+  const Eigen::VectorXd& constraintValues() const { return values_; }
+  int constraintCount() const { return m_; }
+  int rowsPerPoint() const { return rows_per_point_; }
+  bool finalized() const { return finalized_; }
+  const Eigen::VectorXd& finalX() const { return final_x_; }
+  const Eigen::VectorXd& finalLambda() const { return final_lambda_; }
+  bool timedOut() const { return timed_out_; }
+  int lastIteration() const { return last_iteration_; }
+
+  bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac_g,
+                    Ipopt::Index& nnz_h_lag, IndexStyleEnum& index_style) override {
+    n = n_;
+    m = m_;
+    nnz_jac_g = n_ * m_;  // dense
+    nnz_h_lag = 0;        // limited-memory quasi-Newton
+    index_style = C_STYLE;
+    return true;
+  }
+
+  bool get_bounds_info(Ipopt::Index n, Ipopt::Number* x_l, Ipopt::Number* x_u, Ipopt::Index m,
+                       Ipopt::Number* g_l, Ipopt::Number* g_u) override {
+    for (Ipopt::Index k = 0; k < n; ++k) {
+      x_l[k] = -kIpoptInfinity;
+      x_u[k] = kIpoptInfinity;
+    }
+    x_l[model_.finalTimeIndex()] = kMinFinalTime;
+    for (Ipopt::Index i = 0; i < m; ++i) {
+      g_l[i] = i < 3 ? 0.0 : -kIpoptInfinity;
+      g_u[i] = 0.0;
+    }
+    return true;
+  }
+
+  bool get_starting_point(Ipopt::Index n, bool init_x, Ipopt::Number* x, bool init_z,
+                          Ipopt::Number* /*z_L*/, Ipopt::Number* /*z_U*/, Ipopt::Index /*m*/,
+                          bool init_lambda, Ipopt::Number* /*lambda*/) override {
+    if (init_z || init_lambda) return false;  // only x is supplied
+    if (init_x) std::copy(q0_.data(), q0_.data() + n, x);
+    return true;
+  }
+
+  bool eval_f(Ipopt::Index /*n*/, const Ipopt::Number* x, bool /*new_x*/,
+              Ipopt::Number& obj_value) override {
+    return guarded([&] {
+      if (!update(x)) return false;
+      obj_value = eval_.cost;
+      return true;
+    });
+  }
+
+  bool eval_grad_f(Ipopt::Index n, const Ipopt::Number* x, bool /*new_x*/,
+                   Ipopt::Number* grad_f) override {
+    return guarded([&] {
+      if (!update(x)) return false;
+      std::copy(eval_.gradient.data(), eval_.gradient.data() + n, grad_f);
+      return true;
+    });
+  }
+
+  bool eval_g(Ipopt::Index /*n*/, const Ipopt::Number* x, bool /*new_x*/, Ipopt::Index m,
+              Ipopt::Number* g) override {
+    return guarded([&] {
+      if (!update(x)) return false;
+      std::copy(values_.data(), values_.data() + m, g);
+      return true;
+    });
+  }
+
+  bool eval_jac_g(Ipopt::Index /*n*/, const Ipopt::Number* x, bool /*new_x*/, Ipopt::Index /*m*/,
+                  Ipopt::Index nele_jac, Ipopt::Index* iRow, Ipopt::Index* jCol,
+                  Ipopt::Number* values) override {
+    return guarded([&] {
+      if (values == nullptr) {
+        // Structure: dense, row-major.
+        for (Ipopt::Index k = 0; k < nele_jac; ++k) {
+          iRow[k] = k / n_;
+          jCol[k] = k % n_;
+        }
+        return true;
+      }
+      if (!update(x)) return false;
+      std::copy(jacobian_.data(), jacobian_.data() + nele_jac, values);
+      return true;
+    });
+  }
+
+  void finalize_solution(Ipopt::SolverReturn /*status*/, Ipopt::Index n, const Ipopt::Number* x,
+                         const Ipopt::Number* /*z_L*/, const Ipopt::Number* /*z_U*/, Ipopt::Index m,
+                         const Ipopt::Number* /*g*/, const Ipopt::Number* lambda,
+                         Ipopt::Number /*obj_value*/, const Ipopt::IpoptData* /*ip_data*/,
+                         Ipopt::IpoptCalculatedQuantities* /*ip_cq*/) override {
+    if (x == nullptr || lambda == nullptr) return;
+    final_x_ = Eigen::Map<const Eigen::VectorXd>(x, n);
+    final_lambda_ = Eigen::Map<const Eigen::VectorXd>(lambda, m);
+    finalized_ = true;
+  }
+
+  bool intermediate_callback(Ipopt::AlgorithmMode mode, Ipopt::Index iter,
+                             Ipopt::Number /*obj_value*/, Ipopt::Number /*inf_pr*/,
+                             Ipopt::Number inf_du, Ipopt::Number /*mu*/, Ipopt::Number /*d_norm*/,
+                             Ipopt::Number /*regularization_size*/, Ipopt::Number /*alpha_du*/,
+                             Ipopt::Number alpha_pr, Ipopt::Index /*ls_trials*/,
+                             const Ipopt::IpoptData* ip_data,
+                             Ipopt::IpoptCalculatedQuantities* /*ip_cq*/) override {
+    return guarded([&] {
+      last_iteration_ = iter;
+      IterationRecord record;
+      record.iteration = iter;
+      record.lagrangian_gradient = inf_du;
+      record.step = alpha_pr;
+      const RecentPoint* point = currentPoint(mode, ip_data);
+      if (point != nullptr) {
+        record.terminal_error = point->terminal_error.head<2>().norm();
+        record.heading_error = std::abs(point->terminal_error.z());
+        record.cost = point->cost;
+      } else {
+        record.terminal_error = record.heading_error = record.cost =
+            std::numeric_limits<double>::quiet_NaN();
+      }
+      history_.push_back(record);
+      if (options_.time_limit_s && elapsedSeconds(started_) > *options_.time_limit_s) {
+        timed_out_ = true;
+        return false;  // User_Requested_Stop
+      }
+      return true;
+    });
+  }
+
+ private:
+  template <typename Body>
+  static bool guarded(Body body) {
+    try {
+      return body();
+    } catch (...) {
+      return false;
+    }
+  }
+
+  // The iterate of this iteration among the recently evaluated points (Ipopt evaluated it
+  // before the callback); in the restoration phase (whose iterate is not q) the last point
+  // evaluated. Null when none is known.
+  const RecentPoint* currentPoint(Ipopt::AlgorithmMode mode, const Ipopt::IpoptData* ip_data) {
+    if (mode == Ipopt::RegularMode && ip_data != nullptr && Ipopt::IsValid(ip_data->curr())) {
+      const auto* x =
+          dynamic_cast<const Ipopt::DenseVector*>(Ipopt::GetRawPtr(ip_data->curr()->x()));
+      if (x != nullptr && x->Dim() == n_) {
+        const Eigen::Map<const Eigen::VectorXd> q(x->ExpandedValues(), n_);
+        for (auto it = recent_.rbegin(); it != recent_.rend(); ++it) {
+          if (it->q == q) return &*it;
+        }
+        // Not evaluated by a callback (should not happen): one integration without derivatives.
+        if (model_.evaluate(q, DerivativeMode::kNone, scratch_)) {
+          recent_.push_back({q, scratch_.terminal_error, scratch_.cost});
+          if (recent_.size() > kRecentPoints) recent_.pop_front();
+          return &recent_.back();
+        }
+        return nullptr;
+      }
+    }
+    return recent_.empty() ? nullptr : &recent_.back();
+  }
+
+  ParametricTrajectoryModel& model_;
+  const PathConstraints* constraints_;  // null or no rows: terminal equalities only
+  const IpoptOptions& options_;
+  Eigen::VectorXd q0_;
+  Clock::time_point started_;
+  std::vector<IterationRecord>& history_;
+  int n_;
+  int rows_per_point_;
+  int m_ = 3;
+  std::vector<double> tau_;
+
+  // The cached evaluation.
+  bool has_cache_ = false;
+  bool cache_ok_ = false;
+  Eigen::VectorXd cache_q_;
+  ParametricEvaluation eval_, scratch_;
+  PathEvaluation path_;
+  Eigen::VectorXd values_;   // m_: c, then the path rows point by point
+  RowMajorMatrix jacobian_;  // m_ x n_
+  Eigen::Matrix<double, Eigen::Dynamic, kPathVariables> point_jacobian_;
+  std::string message_;
+  std::deque<RecentPoint> recent_;
+
+  // The outcome.
+  bool finalized_ = false;
+  Eigen::VectorXd final_x_, final_lambda_;
+  bool timed_out_ = false;
+  int last_iteration_ = 0;
+};
+
+// The worst violated row of the constraint values `values` (terminal rows by their absolute
+// value), for reasons.
+std::string worstConstraint(const TrajectoryNlp& nlp, const PathConstraints* constraints) {
+  const Eigen::VectorXd& values = nlp.constraintValues();
+  static const char* const kTerminal[] = {"terminal x", "terminal y", "terminal heading"};
+  int worst = 0;
+  double amount = 0.0;
+  for (int i = 0; i < nlp.constraintCount(); ++i) {
+    const double violation = i < 3 ? std::abs(values(i)) : values(i);
+    if (violation > amount) {
+      amount = violation;
+      worst = i;
+    }
+  }
+  std::ostringstream text;
+  if (amount <= 0.0) return "no constraint violated at the final point";
+  if (worst < 3) {
+    text << kTerminal[worst];
+  } else {
+    const int row = (worst - 3) % nlp.rowsPerPoint();
+    const int point = (worst - 3) / nlp.rowsPerPoint();
+    text << constraints->name(row) << " at path point " << point;
+  }
+  text << " violated by " << amount;
+  return text.str();
+}
+
+SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* constraints,
+                     const Eigen::VectorXd& q0, const IpoptOptions& options, SolveResult& result,
+                     Clock::time_point started, long integrations_before) {
+  const auto finish = [&](SolveStatus status, std::string reason) {
+    result.status = status;
+    result.reason = std::move(reason);
+    result.solve_time_ms = 1e3 * elapsedSeconds(started);
+    result.integrations = model.integrations() - integrations_before;
+    return result;
+  };
+  const int n = model.parameterCount();
+  const bool with_path =
+      constraints != nullptr && options.path_constraints && constraints->count() > 0;
+  if (q0.size() != n) return finish(SolveStatus::kError, "initial guess has the wrong size");
+  if (with_path && options.path_points < 2) {
+    return finish(SolveStatus::kError, "path_points must be >= 2");
+  }
+  if (options.max_iterations < 0) return finish(SolveStatus::kError, "max_iterations < 0");
+  if (options.time_limit_s && !(*options.time_limit_s >= 0.0)) {
+    return finish(SolveStatus::kError, "time_limit_s must be >= 0");
+  }
+
+  Ipopt::SmartPtr<TrajectoryNlp> nlp = new TrajectoryNlp(model, with_path ? constraints : nullptr,
+                                                         options, q0, started, result.history);
+  if (!nlp->update(q0.data())) {
+    return finish(SolveStatus::kDiverged, "initial guess: " + nlp->message());
+  }
+  result.cost = nlp->evaluation().cost;
+  result.terminal_error = nlp->evaluation().terminal_error;
+
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  Ipopt::OptionsList& ipopt = *app->Options();
+  const ConvergenceCriteria& criteria = options.criteria;
+  const double constr_viol_tol = 0.1 * std::min(criteria.position_m, criteria.heading_rad);
+  bool options_ok = ipopt.SetStringValue("sb", "yes") &&
+                    ipopt.SetIntegerValue("print_level", options.print_level) &&
+                    ipopt.SetStringValue("linear_solver", "mumps") &&
+                    ipopt.SetStringValue("hessian_approximation", "limited-memory") &&
+                    ipopt.SetIntegerValue("max_iter", options.max_iterations) &&
+                    ipopt.SetNumericValue(
+                        "tol", std::min(constr_viol_tol, 0.01 * criteria.lagrangian_gradient)) &&
+                    ipopt.SetNumericValue("constr_viol_tol", constr_viol_tol) &&
+                    ipopt.SetNumericValue("dual_inf_tol", criteria.lagrangian_gradient) &&
+                    ipopt.SetNumericValue("acceptable_constr_viol_tol", constr_viol_tol) &&
+                    ipopt.SetNumericValue("acceptable_dual_inf_tol", criteria.lagrangian_gradient);
+  if (options.time_limit_s) {
+    options_ok =
+        options_ok && ipopt.SetNumericValue("max_cpu_time", std::max(*options.time_limit_s, 1e-6));
+  }
+  if (!options_ok) {
+    return finish(SolveStatus::kError,
+                  "Ipopt rejected an option (check the criteria, print_level in [0, 12])");
+  }
+  if (app->Initialize("") != Ipopt::Solve_Succeeded) {  // "": no ipopt.opt file is read
+    return finish(SolveStatus::kError, "Ipopt could not be initialised");
+  }
+  const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
+
+  result.iterations = result.history.empty() ? 0 : nlp->lastIteration();
+  Eigen::VectorXd q = nlp->finalized() ? nlp->finalX() : q0;
+  if (q.size() != n || !q.allFinite()) q = q0;
+  result.q = q;
+  if (nlp->finalized() && nlp->finalLambda().size() >= 3) {
+    result.lambda = nlp->finalLambda().head<3>();
+  }
+  const bool final_ok = nlp->update(q.data());
+  if (final_ok) {
+    result.cost = nlp->evaluation().cost;
+    result.terminal_error = nlp->evaluation().terminal_error;
+  }
+  const std::string name = ipoptStatusName(status);
+  switch (status) {
+    case Ipopt::Solve_Succeeded:
+    case Ipopt::Solved_To_Acceptable_Level: {
+      if (!final_ok) {
+        return finish(SolveStatus::kDiverged,
+                      "Ipopt reported " + name + " but the final point fails: " + nlp->message());
+      }
+      const double position = result.terminal_error.head<2>().norm();
+      const double heading = std::abs(result.terminal_error.z());
+      if (position <= criteria.position_m && heading <= criteria.heading_rad) {
+        return finish(SolveStatus::kConverged, "");
+      }
+      std::ostringstream text;
+      text << "Ipopt reported " << name << " but the terminal error is " << position << " m, "
+           << heading << " rad (criteria " << criteria.position_m << " m, " << criteria.heading_rad
+           << " rad)";
+      return finish(SolveStatus::kDiverged, text.str());
+    }
+    case Ipopt::Maximum_Iterations_Exceeded:
+      return finish(SolveStatus::kMaxIterations,
+                    "max_iterations = " + std::to_string(options.max_iterations) + " reached");
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      return finish(SolveStatus::kMaxIterations,
+                    "time limit of " + std::to_string(options.time_limit_s.value_or(0.0)) +
+                        " s reached (Ipopt max_cpu_time)");
+    case Ipopt::Infeasible_Problem_Detected:
+      return finish(SolveStatus::kInfeasible,
+                    "Ipopt: the constraints are locally infeasible (" +
+                        (final_ok ? worstConstraint(*nlp, constraints) : nlp->message()) + ")");
+    case Ipopt::User_Requested_Stop:
+      if (nlp->timedOut()) {
+        return finish(
+            SolveStatus::kMaxIterations,
+            "time limit of " + std::to_string(options.time_limit_s.value_or(0.0)) + " s reached");
+      }
+      break;
+    default:
+      break;
+  }
+  std::string reason = "Ipopt returned " + name;
+  if (status == Ipopt::Invalid_Number_Detected || status == Ipopt::Restoration_Failed ||
+      status == Ipopt::Error_In_Step_Computation) {
+    if (!nlp->message().empty()) reason += " (last evaluation: " + nlp->message() + ")";
+  }
+  return finish(SolveStatus::kDiverged, reason);
+}
+
+}  // namespace
+
+SolveResult solveIpopt(ParametricTrajectoryModel& model, const PathConstraints* constraints,
+                       const Eigen::VectorXd& q0, const IpoptOptions& options) {
+  const Clock::time_point started = Clock::now();
+  const long integrations_before = model.integrations();
+  SolveResult result;
+  result.method = "ipopt";
+  result.q = q0;
+  try {
+    return runIpopt(model, constraints, q0, options, result, started, integrations_before);
+  } catch (const std::exception& error) {
+    result.status = SolveStatus::kError;
+    result.reason = std::string("Ipopt: unexpected exception: ") + error.what();
+  } catch (...) {
+    result.status = SolveStatus::kError;
+    result.reason = "Ipopt: unexpected exception";
+  }
+  result.solve_time_ms = 1e3 * elapsedSeconds(started);
+  result.integrations = model.integrations() - integrations_before;
+  return result;
+}
+
+}  // namespace terratraj::ocp
