@@ -30,11 +30,11 @@ Eigen::VectorXd fitClosedPolynomial(int order, double delta, Target target) {
   return m.colPivHouseholderQr().solve(b);
 }
 
-// Flat-ground integration: RK4 with steps of 0.05 s (the flat map is smooth; this is a seed).
+// Flat-ground integration: RK4 with steps of 0.1 s (the flat map is smooth; this is a seed).
 ParametricModelOptions flatOptions() {
   ParametricModelOptions options;
   options.integrator.method = models::IntegrationMethod::kRk4;
-  options.integrator.step = 0.05;
+  options.integrator.step = 0.1;
   return options;
 }
 
@@ -146,7 +146,7 @@ InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
   options.hessian = HessianApproximation::kFiniteDifference;
   options.hessian_step = 1e-6;
   options.max_iterations = 30;
-  options.criteria = {1e-6, 1e-6, 1e-6};
+  options.criteria = {1e-5, 1e-5, 1e-4};
   NewtonStart start{q, guess.lambda, Eigen::MatrixXd()};
   const SolveResult optimum = solveNewton(model, start, options, "flat");
   guess.integrations = model.integrations();
