@@ -4,26 +4,20 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <sstream>
 #include <string>
 
+#include "solve_accounting.hpp"
 #include "terratraj/ocp/newton_solver.hpp"
 
 namespace terratraj::ocp {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 constexpr double kMinFinalTime = 1e-3;  // lower bound of t_f [s]
-
-double elapsedSeconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 // The augmented-Lagrangian residuals (r0, r_c) of one parameter block q. Evaluations are
 // cached on q with sensitivities (Ceres asks for the residuals of a trial point, then for the
@@ -88,14 +82,10 @@ class AugmentedLagrangianResiduals final : public ceres::CostFunction {
 };
 
 SolveResult runCeres(ParametricTrajectoryModel& model, const Eigen::VectorXd& q0,
-                     const CeresOptions& options, SolveResult& result, Clock::time_point started,
-                     long integrations_before) {
+                     const CeresOptions& options, SolveResult& result,
+                     const detail::SolveAccounting& accounting) {
   const auto finish = [&](SolveStatus status, std::string reason) {
-    result.status = status;
-    result.reason = std::move(reason);
-    result.solve_time_ms = 1e3 * elapsedSeconds(started);
-    result.integrations = model.integrations() - integrations_before;
-    return result;
+    return accounting.finish(status, std::move(reason));
   };
   const int n = model.parameterCount();
   const int itf = model.finalTimeIndex();
@@ -170,7 +160,7 @@ SolveResult runCeres(ParametricTrajectoryModel& model, const Eigen::VectorXd& q0
     }
     double remaining_s = 1e9;
     if (options.time_limit_s) {
-      remaining_s = *options.time_limit_s - elapsedSeconds(started);
+      remaining_s = *options.time_limit_s - accounting.elapsedSeconds();
       if (remaining_s <= 0.0) {
         return finish(SolveStatus::kMaxIterations,
                       "time limit of " + std::to_string(*options.time_limit_s) + " s reached");
@@ -225,23 +215,11 @@ SolveResult runCeres(ParametricTrajectoryModel& model, const Eigen::VectorXd& q0
 
 SolveResult solveCeres(ParametricTrajectoryModel& model, const Eigen::VectorXd& q0,
                        const CeresOptions& options) {
-  const Clock::time_point started = Clock::now();
-  const long integrations_before = model.integrations();
   SolveResult result;
-  result.method = "ceres";
   result.q = q0;
-  try {
-    return runCeres(model, q0, options, result, started, integrations_before);
-  } catch (const std::exception& error) {
-    result.status = SolveStatus::kError;
-    result.reason = std::string("Ceres: unexpected exception: ") + error.what();
-  } catch (...) {
-    result.status = SolveStatus::kError;
-    result.reason = "Ceres: unexpected exception";
-  }
-  result.solve_time_ms = 1e3 * elapsedSeconds(started);
-  result.integrations = model.integrations() - integrations_before;
-  return result;
+  const detail::SolveAccounting accounting(model, result, "ceres");
+  return detail::guardThirdParty("Ceres", accounting,
+                                 [&] { return runCeres(model, q0, options, result, accounting); });
 }
 
 }  // namespace terratraj::ocp

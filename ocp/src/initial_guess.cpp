@@ -77,8 +77,8 @@ Eigen::VectorXd heuristicGuess(const BoundaryValueProblem& problem) {
     mean_speed += std::abs(v) / kFitSamples;
   }
   const double tf = length / std::max(mean_speed, 1e-3);
-  // Yaw rate: turn toward the goal, then align with its heading (heading(tau) =
-  // turn tau + 3 (2 bearing - turn) (tau - tau^2)...): omega = turn / t_f + A (1 - 2 tau).
+  // Yaw rate: turn toward the goal, then align with its heading: omega = turn / t_f +
+  // A (1 - 2 tau), with A such that the mean heading (turn / 2 + A t_f / 6) is the bearing.
   const double a = 6.0 * (bearing - 0.5 * turn) / tf;
   const Eigen::VectorXd yaw =
       fitClosedPolynomial(problem.orders.yaw_rate, g.omega - s.omega,

@@ -9,28 +9,23 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <deque>
-#include <exception>
 #include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "solve_accounting.hpp"
+
 namespace terratraj::ocp {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 constexpr double kMinFinalTime = 1e-3;     // lower bound of t_f [s]
 constexpr double kIpoptInfinity = 1e19;    // Ipopt's default nlp_{lower,upper}_bound_inf
 constexpr std::size_t kRecentPoints = 32;  // evaluated points kept for the history records
-
-double elapsedSeconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 const char* ipoptStatusName(Ipopt::ApplicationReturnStatus status) {
   switch (status) {
@@ -90,13 +85,13 @@ struct RecentPoint {
 class TrajectoryNlp final : public Ipopt::TNLP {
  public:
   TrajectoryNlp(ParametricTrajectoryModel& model, const PathConstraints* constraints,
-                const IpoptOptions& options, const Eigen::VectorXd& q0, Clock::time_point started,
-                std::vector<IterationRecord>& history)
+                const IpoptOptions& options, const Eigen::VectorXd& q0,
+                const detail::SolveAccounting& accounting, std::vector<IterationRecord>& history)
       : model_(model),
         constraints_(constraints),
         options_(options),
         q0_(q0),
-        started_(started),
+        accounting_(accounting),
         history_(history),
         n_(model.parameterCount()),
         rows_per_point_(constraints != nullptr ? constraints->count() : 0) {
@@ -273,7 +268,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
             std::numeric_limits<double>::quiet_NaN();
       }
       history_.push_back(record);
-      if (options_.time_limit_s && elapsedSeconds(started_) > *options_.time_limit_s) {
+      if (accounting_.pastTimeLimit(options_.time_limit_s)) {
         timed_out_ = true;
         return false;  // User_Requested_Stop
       }
@@ -319,7 +314,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
   const PathConstraints* constraints_;  // null or no rows: terminal equalities only
   const IpoptOptions& options_;
   Eigen::VectorXd q0_;
-  Clock::time_point started_;
+  const detail::SolveAccounting& accounting_;
   std::vector<IterationRecord>& history_;
   int n_;
   int rows_per_point_;
@@ -374,13 +369,9 @@ std::string worstConstraint(const TrajectoryNlp& nlp, const PathConstraints* con
 
 SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* constraints,
                      const Eigen::VectorXd& q0, const IpoptOptions& options, SolveResult& result,
-                     Clock::time_point started, long integrations_before) {
+                     const detail::SolveAccounting& accounting) {
   const auto finish = [&](SolveStatus status, std::string reason) {
-    result.status = status;
-    result.reason = std::move(reason);
-    result.solve_time_ms = 1e3 * elapsedSeconds(started);
-    result.integrations = model.integrations() - integrations_before;
-    return result;
+    return accounting.finish(status, std::move(reason));
   };
   const int n = model.parameterCount();
   const bool with_path =
@@ -395,7 +386,7 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
   }
 
   Ipopt::SmartPtr<TrajectoryNlp> nlp = new TrajectoryNlp(model, with_path ? constraints : nullptr,
-                                                         options, q0, started, result.history);
+                                                         options, q0, accounting, result.history);
   if (!nlp->update(q0.data())) {
     return finish(SolveStatus::kDiverged, "initial guess: " + nlp->message());
   }
@@ -494,23 +485,12 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
 
 SolveResult solveIpopt(ParametricTrajectoryModel& model, const PathConstraints* constraints,
                        const Eigen::VectorXd& q0, const IpoptOptions& options) {
-  const Clock::time_point started = Clock::now();
-  const long integrations_before = model.integrations();
   SolveResult result;
-  result.method = "ipopt";
   result.q = q0;
-  try {
-    return runIpopt(model, constraints, q0, options, result, started, integrations_before);
-  } catch (const std::exception& error) {
-    result.status = SolveStatus::kError;
-    result.reason = std::string("Ipopt: unexpected exception: ") + error.what();
-  } catch (...) {
-    result.status = SolveStatus::kError;
-    result.reason = "Ipopt: unexpected exception";
-  }
-  result.solve_time_ms = 1e3 * elapsedSeconds(started);
-  result.integrations = model.integrations() - integrations_before;
-  return result;
+  const detail::SolveAccounting accounting(model, result, "ipopt");
+  return detail::guardThirdParty("Ipopt", accounting, [&] {
+    return runIpopt(model, constraints, q0, options, result, accounting);
+  });
 }
 
 }  // namespace terratraj::ocp

@@ -2,18 +2,13 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
+#include "solve_accounting.hpp"
+
 namespace terratraj::ocp {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double elapsedSeconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 bool converged(const ParametricEvaluation& at, double stationarity,
                const ConvergenceCriteria& criteria) {
@@ -68,19 +63,13 @@ Eigen::Vector3d leastSquaresMultipliers(const Eigen::MatrixXd& jacobian,
 
 SolveResult solveNewton(ParametricTrajectoryModel& model, const NewtonStart& start,
                         const NewtonOptions& options, const char* method) {
-  const Clock::time_point started = Clock::now();
-  const long integrations_before = model.integrations();
   SolveResult result;
-  result.method = method;
+  const detail::SolveAccounting accounting(model, result, method);
   const int n = model.parameterCount();
   const int itf = model.finalTimeIndex();
   const DerivativeMode mode = options.derivatives;
   const auto finish = [&](SolveStatus status, std::string reason) {
-    result.status = status;
-    result.reason = std::move(reason);
-    result.solve_time_ms = 1e3 * elapsedSeconds(started);
-    result.integrations = model.integrations() - integrations_before;
-    return result;
+    return accounting.finish(status, std::move(reason));
   };
 
   ParametricEvaluation current, trial, correction;
@@ -123,7 +112,7 @@ SolveResult solveNewton(ParametricTrajectoryModel& model, const NewtonStart& sta
       return finish(SolveStatus::kMaxIterations,
                     "max_iterations = " + std::to_string(options.max_iterations) + " reached");
     }
-    if (options.time_limit_s && elapsedSeconds(started) > *options.time_limit_s) {
+    if (accounting.pastTimeLimit(options.time_limit_s)) {
       return finish(SolveStatus::kMaxIterations,
                     "time limit of " + std::to_string(*options.time_limit_s) + " s reached");
     }

@@ -6,6 +6,11 @@
 namespace terratraj::ocp {
 namespace {
 
+// A polynomial's value minus p0 and its first and second derivatives by tau.
+struct PolynomialSample {
+  double value = 0.0, slope = 0.0, curve = 0.0;
+};
+
 // One closed polynomial p(tau) = p0 + sum_{k=1..K} c_k tau^k, c_K = delta - sum_{k<K} c_k,
 // with free coefficients c_1..c_{K-1} = free[0..K-2].
 struct ClosedPolynomial {
@@ -13,21 +18,32 @@ struct ClosedPolynomial {
   int order;
   double delta;
 
-  // Value minus p0, first and second derivative by tau.
-  void evaluate(double tau, double& value, double& d1, double& d2) const {
-    value = d1 = d2 = 0.0;
-    double top = delta;
-    for (int k = 1; k < order; ++k) top -= free[k - 1];
+  double top() const {
+    double c = delta;
+    for (int k = 1; k < order; ++k) c -= free[k - 1];
+    return c;
+  }
+  PolynomialSample evaluate(double tau) const {
+    PolynomialSample out;
+    const double c_top = top();
     double power = 1.0;   // tau^(k-1)
     double power2 = 0.0;  // tau^(k-2)
     for (int k = 1; k <= order; ++k) {
-      const double c = k < order ? free[k - 1] : top;
-      d2 += k * (k - 1) * c * power2;
-      d1 += k * c * power;
-      value += c * power * tau;
+      const double c = k < order ? free[k - 1] : c_top;
+      out.curve += k * (k - 1) * c * power2;
+      out.slope += k * c * power;
+      out.value += c * power * tau;
       power2 = power;
       power *= tau;
     }
+    return out;
+  }
+  // All coefficients c_1..c_K.
+  Eigen::VectorXd coefficients() const {
+    Eigen::VectorXd c(order);
+    for (int k = 1; k < order; ++k) c(k - 1) = free[k - 1];
+    c(order - 1) = top();
+    return c;
   }
   // d value / d c_k = tau^k - tau^K; d (d value / d tau) / d c_k = k tau^(k-1) - K tau^(K-1).
   void freeDerivatives(double tau, double* d_value, double* d_slope) const {
@@ -64,11 +80,9 @@ void ParametricControls::evaluate(double t, double& v, double& omega, double* dv
   const double tau = t / tf;
   const ClosedPolynomial yaw{q_.data(), yaw_order_, delta_omega_};
   const ClosedPolynomial speed{q_.data() + yaw_free_, speed_order_, delta_v_};
-  double yaw_value, yaw_slope, yaw_curve, speed_value, speed_slope, speed_curve;
-  yaw.evaluate(tau, yaw_value, yaw_slope, yaw_curve);
-  speed.evaluate(tau, speed_value, speed_slope, speed_curve);
-  omega = start_omega_ + yaw_value;
-  v = start_v_ + speed_value;
+  const PolynomialSample w = yaw.evaluate(tau), s = speed.evaluate(tau);
+  omega = start_omega_ + w.value;
+  v = start_v_ + s.value;
   if (dv_dq == nullptr && domega_dq == nullptr) return;
   const int n = parameterCount();
   const int itf = finalTimeIndex();
@@ -76,12 +90,12 @@ void ParametricControls::evaluate(double t, double& v, double& omega, double* dv
   if (domega_dq != nullptr) {
     std::fill(domega_dq, domega_dq + n, 0.0);
     yaw.freeDerivatives(tau, domega_dq, nullptr);
-    domega_dq[itf] = -yaw_slope * tau / tf;
+    domega_dq[itf] = -w.slope * tau / tf;
   }
   if (dv_dq != nullptr) {
     std::fill(dv_dq, dv_dq + n, 0.0);
     speed.freeDerivatives(tau, dv_dq + yaw_free_, nullptr);
-    dv_dq[itf] = -speed_slope * tau / tf;
+    dv_dq[itf] = -s.slope * tau / tf;
   }
 }
 
@@ -90,10 +104,8 @@ ControlRates ParametricControls::rates(double t, double* d_v_dot, double* d_omeg
   const double tau = t / tf;
   const ClosedPolynomial yaw{q_.data(), yaw_order_, delta_omega_};
   const ClosedPolynomial speed{q_.data() + yaw_free_, speed_order_, delta_v_};
-  double yaw_value, yaw_slope, yaw_curve, speed_value, speed_slope, speed_curve;
-  yaw.evaluate(tau, yaw_value, yaw_slope, yaw_curve);
-  speed.evaluate(tau, speed_value, speed_slope, speed_curve);
-  ControlRates out{speed_slope / tf, yaw_slope / tf};
+  const PolynomialSample w = yaw.evaluate(tau), s = speed.evaluate(tau);
+  const ControlRates out{s.slope / tf, w.slope / tf};
   const int n = parameterCount();
   const int itf = finalTimeIndex();
   // rate = p'(tau) / t_f; d/dt_f at fixed t = -p'/t_f^2 - p'' tau / t_f^2.
@@ -101,37 +113,23 @@ ControlRates ParametricControls::rates(double t, double* d_v_dot, double* d_omeg
     std::fill(d_omega_dot, d_omega_dot + n, 0.0);
     yaw.freeDerivatives(tau, nullptr, d_omega_dot);
     for (int k = 0; k < yaw_free_; ++k) d_omega_dot[k] /= tf;
-    d_omega_dot[itf] = -(yaw_slope + yaw_curve * tau) / (tf * tf);
+    d_omega_dot[itf] = -(w.slope + w.curve * tau) / (tf * tf);
   }
   if (d_v_dot != nullptr) {
     std::fill(d_v_dot, d_v_dot + n, 0.0);
     speed.freeDerivatives(tau, nullptr, d_v_dot + yaw_free_);
     for (int k = 0; k < speed_free_; ++k) d_v_dot[yaw_free_ + k] /= tf;
-    d_v_dot[itf] = -(speed_slope + speed_curve * tau) / (tf * tf);
+    d_v_dot[itf] = -(s.slope + s.curve * tau) / (tf * tf);
   }
   return out;
 }
 
 Eigen::VectorXd ParametricControls::yawRateCoefficients() const {
-  Eigen::VectorXd c(yaw_order_);
-  double top = delta_omega_;
-  for (int k = 0; k < yaw_free_; ++k) {
-    c(k) = q_(k);
-    top -= q_(k);
-  }
-  c(yaw_order_ - 1) = top;
-  return c;
+  return ClosedPolynomial{q_.data(), yaw_order_, delta_omega_}.coefficients();
 }
 
 Eigen::VectorXd ParametricControls::speedCoefficients() const {
-  Eigen::VectorXd c(speed_order_);
-  double top = delta_v_;
-  for (int k = 0; k < speed_free_; ++k) {
-    c(k) = q_(yaw_free_ + k);
-    top -= q_(yaw_free_ + k);
-  }
-  c(speed_order_ - 1) = top;
-  return c;
+  return ClosedPolynomial{q_.data() + yaw_free_, speed_order_, delta_v_}.coefficients();
 }
 
 }  // namespace terratraj::ocp

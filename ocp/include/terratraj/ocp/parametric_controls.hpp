@@ -16,7 +16,7 @@
 
 namespace terratraj::ocp {
 
-/// Control rates (v', omega') [m/s^2, rad/s^2] at one time and their derivatives by q.
+/// Control rates (v', omega') [m/s^2, rad/s^2] at one time.
 struct ControlRates {
   double v_dot = 0.0;
   double omega_dot = 0.0;
