@@ -11,6 +11,7 @@
 #include "terratraj/models/terrain_following_model.hpp"
 #include "terratraj/models/trajectory.hpp"
 #include "terratraj/ocp/boundary_value_problem.hpp"
+#include "terratraj/ocp/direct_transcription.hpp"
 #include "terratraj/ocp/path_constraints.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
 
@@ -34,6 +35,8 @@ struct VerifiedTrajectory {
   double slope_dwell = 0.0;  ///< integral of roll^2 + pitch^2 dt [rad^2 s]
   double length = 0.0;       ///< planar path length [m]
   double max_abs_pitch = 0.0, max_abs_roll = 0.0, max_speed = 0.0;
+  /// Re-integrated final speed and yaw rate minus the goal's (transcription only) [m/s, rad/s].
+  Eigen::Vector2d terminal_speed_error = Eigen::Vector2d::Zero();
   LimitViolation violation;  ///< largest, over the samples ("lethal" when a sample is on one)
 };
 
@@ -44,5 +47,14 @@ VerifiedTrajectory verifyParametricSolution(const models::TerrainFollowingModel&
                                             const Eigen::VectorXd& q,
                                             const terrain::ElevationMap* map,
                                             const VerificationOptions& options = {});
+
+/// Re-simulates a direct-transcription solution: v and omega re-integrated from the start with
+/// the interpolated controls (TranscriptionSolution::controlsAt), the pose by CVODES, every
+/// sample checked against the model's limits (including the Segway's and the clearance) and
+/// the lethal layer of `map` when not null. Never throws.
+VerifiedTrajectory verifyTranscriptionSolution(const TranscriptionModel& model,
+                                               const TranscriptionSolution& solution,
+                                               const terrain::ElevationMap* map,
+                                               const VerificationOptions& options = {});
 
 }  // namespace terratraj::ocp

@@ -1,0 +1,117 @@
+#pragma once
+// Direct transcription (multiple shooting and collocation) solved with Ipopt: trajectories
+// polynomial controls cannot express (bang-bang acceleration, a pitch limit active for a
+// stretch, long paths around obstacles), with a free final time, path constraints at every
+// point, a warm start from any trajectory and optional mesh refinement.
+// docs/optimal-control.md, "Direct transcription", gives the formulation and the choices.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "terratraj/models/terrain_following_model.hpp"
+#include "terratraj/ocp/boundary_value_problem.hpp"
+#include "terratraj/ocp/solve_result.hpp"
+#include "terratraj/ocp/transcription_guess.hpp"
+#include "terratraj/ocp/transcription_model.hpp"
+#include "terratraj/ocp/transcription_nlp.hpp"
+
+namespace terratraj::ocp {
+
+/// Second derivatives given to Ipopt.
+enum class TranscriptionHessian {
+  kExact,          ///< collocation: block-diagonal Lagrangian Hessian (transcription_nlp.hpp)
+  kLimitedMemory,  ///< Ipopt's L-BFGS (the only choice for multiple shooting)
+};
+
+/// Variable and constraint scaling given to Ipopt.
+enum class TranscriptionScaling {
+  kUser,           ///< v, omega, v' by their limits, t_f by the guess's, defects as their states
+  kGradientBased,  ///< Ipopt's own
+  kNone,
+};
+
+/// Re-solving with more intervals where the integration error between nodes is large.
+struct MeshRefinementOptions {
+  int max_rounds = 0;        ///< 0: no refinement
+  double tolerance = 1e-3;   ///< local error of an interval [m and rad] (CVODES from its node)
+  int max_intervals = 1000;  ///< never refine beyond this many intervals
+};
+
+/// How to transcribe and solve.
+struct DirectTranscriptionOptions {
+  TranscriptionScheme scheme = TranscriptionScheme::kHermiteSimpson;
+  ShootingControls shooting_controls = ShootingControls::kPiecewiseLinear;
+  int intervals = 40;  ///< N, >= 1
+  /// Unset: exact for collocation, limited-memory for shooting.
+  std::optional<TranscriptionHessian> hessian;
+  TranscriptionScaling scaling = TranscriptionScaling::kUser;
+  double min_final_time = 1e-2;        ///< lower bound of t_f [s], > 0
+  double max_final_time = 1e4;         ///< upper bound of t_f [s]
+  int max_iterations = 1000;           ///< Ipopt iterations per solve, >= 1
+  std::optional<double> time_limit_s;  ///< wall clock for the whole solve [s]
+  double tolerance = 1e-8;             ///< Ipopt's tol (scaled KKT error)
+  double constraint_tolerance = 1e-8;  ///< Ipopt's constr_viol_tol (unscaled) [state units]
+  MeshRefinementOptions refinement;
+  TranscriptionModelOptions model;  ///< control effort, Segway constraints, clearance
+};
+
+/// A path constraint active at the solution.
+struct ActiveConstraint {
+  int point = 0;
+  double t = 0.0;           ///< [s]
+  std::string name;         ///< the limit ("pitch_max", ...)
+  double value = 0.0;       ///< g (<= 0; close to 0)
+  double multiplier = 0.0;  ///< Ipopt's multiplier (> 0 when active)
+};
+
+/// One round of mesh refinement.
+struct RefinementRound {
+  int intervals = 0;
+  double max_interval_error = 0.0;  ///< [m, rad]
+  int iterations = 0;
+};
+
+/// The outcome.
+struct TranscriptionSolution {
+  SolveResult result;        ///< status, reason, iterations, history, time, cost
+  std::string ipopt_status;  ///< Ipopt's own status of the last solve ("Solve_Succeeded", ...)
+  TranscriptionScheme scheme = TranscriptionScheme::kHermiteSimpson;
+  ShootingControls shooting_controls = ShootingControls::kPiecewiseLinear;
+  std::vector<double> mesh;              ///< node times, normalised
+  std::vector<double> times;             ///< point times [s]
+  std::vector<PointVector> points;       ///< w at each point
+  double final_time = 0.0;               ///< [s]
+  Eigen::VectorXd multipliers;           ///< one per constraint row (TranscriptionNlp order)
+  std::vector<ActiveConstraint> active;  ///< active path constraints, with multipliers
+  double max_defect = 0.0;               ///< largest |defect| at the solution [state units]
+  std::vector<RefinementRound> refinement;
+  /// The controls v', omega' [m/s^2, rad/s^2] at time t [s] as the scheme interpolates them
+  /// (piecewise constant / linear, quadratic on Hermite-Simpson intervals).
+  Eigen::Vector2d controlsAt(double t) const;
+  /// The solution as a guess (for warm starts).
+  TranscriptionGuess asGuess() const;
+};
+
+/// Why the options cannot be used, or std::nullopt.
+std::optional<std::string> validateTranscriptionOptions(const DirectTranscriptionOptions& options);
+
+/// Solves `problem` on `vehicle` from `guess` (its first and last points are replaced by the
+/// start and goal; it is interpolated onto the mesh). Never throws: bad input gives kError,
+/// Ipopt's failures map to kInfeasible (infeasible problem, restoration failure, too few
+/// degrees of freedom), kDiverged (diverging iterates, step failures, MUMPS errors, invalid
+/// numbers), kMaxIterations (iteration or time limit), with Ipopt's status in `ipopt_status`.
+/// Ipopt 3.11 is not thread-safe: one solve at a time per process.
+TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingModel& vehicle,
+                                               const BoundaryValueProblem& problem,
+                                               const TranscriptionGuess& guess,
+                                               const DirectTranscriptionOptions& options = {});
+
+/// Largest local integration error over each interval of `solution` (CVODES from each node's
+/// state with the interpolated controls, compared with the next node) [m, rad]; one entry per
+/// interval; std::nullopt when an interval cannot be integrated.
+std::optional<std::vector<double>> intervalErrors(const TranscriptionModel& model,
+                                                  const TranscriptionSolution& solution);
+
+}  // namespace terratraj::ocp

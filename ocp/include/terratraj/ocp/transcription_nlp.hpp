@@ -1,0 +1,162 @@
+#pragma once
+// TranscriptionNlp: a trajectory-optimisation problem transcribed into a sparse nonlinear
+// programme (the functions, their sparse derivatives and the bounds; no solver in here; the
+// Ipopt adapter in direct_transcription.cpp drives it).
+//
+// Variables x = (w_0, ..., w_{P-1}, t_f): the variables w_p of P points (TranscriptionModel's
+// 7 per point) and the final time. The points sit at normalised times tau_p in [0, 1] of a
+// mesh of N intervals (nodes tau_0 = 0 < ... < tau_N = 1; Hermite-Simpson adds the interval
+// midpoints, so P = 2N + 1 there and P = N + 1 otherwise).
+// Constraints, in this order:
+//   defects (5 rows per block): trapezoidal z_{k+1} - z_k - t_f d_k/2 (f_k + f_{k+1});
+//     Hermite-Simpson (separated) z_m - (z_k + z_{k+1})/2 - t_f d_k/8 (f_k - f_{k+1}) and
+//     z_{k+1} - z_k - t_f d_k/6 (f_k + 4 f_m + f_{k+1}); multiple shooting
+//     z_{k+1} - Phi_k(z_k, u_k, [u_{k+1}], t_f) with Phi_k from CVODES and its Jacobian blocks
+//     from CVODES forward sensitivities (d_k = tau_{k+1} - tau_k);
+//   path constraints g(w_p) <= 0 at every point (TranscriptionModel).
+// Objective J = t_f (1 + sum_p omega_p l(w_p)), omega_p the quadrature weights (trapezoid, or
+// Simpson for Hermite-Simpson; trapezoid on the nodes for shooting).
+// The exact Hessian of the Lagrangian (collocation only) is block-diagonal per point plus the
+// t_f row; each block is the central difference of the analytic point gradients (the models
+// give no second derivatives), which the tests compare with differences of the whole gradient.
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "terratraj/ocp/transcription_model.hpp"
+
+namespace terratraj::ocp {
+
+/// How the dynamics are enforced between nodes.
+enum class TranscriptionScheme {
+  kTrapezoidal,       ///< collocation, trapezoidal rule
+  kHermiteSimpson,    ///< collocation, separated Hermite-Simpson
+  kMultipleShooting,  ///< CVODES over each interval
+};
+/// The scheme's name ("trapezoidal", "hermite_simpson", "multiple_shooting").
+const char* transcriptionSchemeName(TranscriptionScheme scheme);
+
+/// Shooting controls within an interval.
+enum class ShootingControls { kPiecewiseConstant, kPiecewiseLinear };
+
+/// The structure of one transcription.
+struct TranscriptionLayout {
+  TranscriptionScheme scheme = TranscriptionScheme::kHermiteSimpson;
+  ShootingControls shooting_controls = ShootingControls::kPiecewiseLinear;
+  std::vector<double> mesh;                    ///< node times tau_0 = 0 < ... < tau_N = 1
+  double shooting_relative_tolerance = 1e-8;   ///< CVODES (shooting only)
+  double shooting_absolute_tolerance = 1e-10;  ///< CVODES (shooting only)
+};
+
+/// A uniform mesh of `intervals` (>= 1) intervals.
+std::vector<double> uniformMesh(int intervals);
+
+/// What a constraint row is.
+struct ConstraintRow {
+  bool defect = false;    ///< a dynamics defect (else a path constraint)
+  int point = 0;          ///< the point (path constraints) or the interval (defects)
+  const char* name = "";  ///< "defect" or the limit's name
+};
+
+/// The sparse NLP. Not thread-safe (it caches the last evaluation); no allocation after
+/// construction except in the shooting integrator's first call.
+class TranscriptionNlp {
+ public:
+  /// `model` must outlive the NLP. Throws std::invalid_argument for a mesh that is not
+  /// increasing from 0 to 1 with at least one interval.
+  TranscriptionNlp(const TranscriptionModel& model, TranscriptionLayout layout);
+  ~TranscriptionNlp();
+  TranscriptionNlp(const TranscriptionNlp&) = delete;
+  TranscriptionNlp& operator=(const TranscriptionNlp&) = delete;
+
+  const TranscriptionLayout& layout() const { return layout_; }
+  const TranscriptionModel& model() const { return *model_; }
+  int intervals() const { return static_cast<int>(layout_.mesh.size()) - 1; }
+  int points() const { return static_cast<int>(tau_.size()); }
+  int variableCount() const { return kPointSize * points() + 1; }
+  int constraintCount() const { return defect_rows_ + path_rows_; }
+  int defectRowCount() const { return defect_rows_; }
+  /// Index of t_f in x.
+  int finalTimeIndex() const { return kPointSize * points(); }
+  /// Normalised time of each point.
+  const std::vector<double>& pointTimes() const { return tau_; }
+  /// Whether a point is a mesh node (else a Hermite-Simpson midpoint).
+  bool isNode(int point) const;
+  /// The point of mesh node k.
+  int nodePoint(int node) const;
+  /// Quadrature weight of each point (they sum to 1).
+  const std::vector<double>& quadratureWeights() const { return weights_; }
+  /// What row `row` of g is.
+  ConstraintRow row(int row) const;
+
+  /// Sparsity of d g / d x (computed once): entry i is (jacobianRows()[i], jacobianCols()[i]).
+  const std::vector<int>& jacobianRows() const { return jac_rows_; }
+  const std::vector<int>& jacobianCols() const { return jac_cols_; }
+  /// Sparsity of the lower triangle of the Lagrangian Hessian (collocation).
+  const std::vector<int>& hessianRows() const { return hess_rows_; }
+  const std::vector<int>& hessianCols() const { return hess_cols_; }
+  /// Whether hessian() is available (collocation schemes).
+  bool hasExactHessian() const { return layout_.scheme != TranscriptionScheme::kMultipleShooting; }
+
+  /// Evaluates objective, gradient, constraints and Jacobian at x (variableCount() values)
+  /// unless x is the point last evaluated. Returns false (message() says why) when the rover
+  /// cannot be placed at a point, an interval cannot be integrated, or a value is not finite.
+  bool evaluate(const double* x);
+  double objective() const { return objective_; }
+  const Eigen::VectorXd& gradient() const { return gradient_; }
+  const Eigen::VectorXd& constraints() const { return constraints_; }
+  /// Values in the order of jacobianRows().
+  const Eigen::VectorXd& jacobianValues() const { return jac_values_; }
+  /// The evaluation of each point at the last x.
+  const PointEvaluation& pointEvaluation(int point) const {
+    return evals_[static_cast<std::size_t>(point)];
+  }
+
+  /// Lower triangle of the Hessian of sigma J + lambda' g at x, in the order of hessianRows().
+  /// Collocation only; false when an evaluation fails.
+  bool hessian(const double* x, double sigma, const double* lambda, double* values);
+
+  const std::string& message() const { return message_; }
+
+ private:
+  struct Term {  // one point's part in a defect block: alpha z_p - t_f beta f_p
+    int point;
+    double alpha;
+    double beta;
+  };
+  struct DefectBlock {
+    std::vector<Term> terms;
+    int row;        // first of 5 rows
+    int jac_start;  // first Jacobian entry: terms x 35 entries, then 5 for t_f
+  };
+  void buildStructure();
+  bool evaluateCollocation(const Eigen::Map<const Eigen::VectorXd>& x);
+  bool evaluateShooting(const Eigen::Map<const Eigen::VectorXd>& x);
+  bool evaluatePoints(const Eigen::Map<const Eigen::VectorXd>& x);
+  void evaluatePathAndCost(const Eigen::Map<const Eigen::VectorXd>& x);
+  // Gradient of nu' f + mu' g + c l at w into `out` (7); false if the point cannot be placed.
+  bool pointLagrangianGradient(const PointVector& w, const StateVector& nu, const double* mu,
+                               double c, models::AttitudeWorkspace& workspace, PointVector& out);
+
+  const TranscriptionModel* model_;
+  TranscriptionLayout layout_;
+  std::vector<double> tau_, weights_;
+  std::vector<DefectBlock> blocks_;
+  int defect_rows_ = 0, path_rows_ = 0, path_jac_start_ = 0;
+  std::vector<int> jac_rows_, jac_cols_, hess_rows_, hess_cols_;
+  std::vector<PointEvaluation> evals_;
+  std::vector<models::AttitudeWorkspace> workspaces_;
+  PointEvaluation scratch_;
+  std::vector<StateVector> nu_;  // Hessian: defect multipliers gathered per point
+  Eigen::VectorXd last_x_;
+  bool has_last_ = false, last_ok_ = false;
+  double objective_ = 0.0;
+  Eigen::VectorXd gradient_, constraints_, jac_values_;
+  std::string message_;
+  struct Shooting;
+  std::unique_ptr<Shooting> shooting_;
+};
+
+}  // namespace terratraj::ocp

@@ -1,0 +1,360 @@
+#include "terratraj/ocp/transcription_nlp.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "shooting_interval.hpp"
+
+namespace terratraj::ocp {
+namespace {
+
+constexpr int kBlockEntries = kStateSize * kPointSize;  // one term of a defect block
+// Relative step of the central differences of the point gradients (exact Hessian).
+constexpr double kHessianStep = 1e-5;
+
+}  // namespace
+
+const char* transcriptionSchemeName(TranscriptionScheme scheme) {
+  switch (scheme) {
+    case TranscriptionScheme::kTrapezoidal:
+      return "trapezoidal";
+    case TranscriptionScheme::kHermiteSimpson:
+      return "hermite_simpson";
+    case TranscriptionScheme::kMultipleShooting:
+      return "multiple_shooting";
+  }
+  return "unknown";
+}
+
+std::vector<double> uniformMesh(int intervals) {
+  std::vector<double> mesh(static_cast<std::size_t>(std::max(intervals, 1)) + 1);
+  for (std::size_t k = 0; k < mesh.size(); ++k) {
+    mesh[k] = static_cast<double>(k) / static_cast<double>(mesh.size() - 1);
+  }
+  mesh.back() = 1.0;
+  return mesh;
+}
+
+struct TranscriptionNlp::Shooting {
+  detail::ShootingInterval integrator;
+  detail::IntervalResult result;
+  Shooting(const TranscriptionModel& model, const TranscriptionLayout& layout)
+      : integrator(model, layout.shooting_controls == ShootingControls::kPiecewiseLinear,
+                   layout.shooting_relative_tolerance, layout.shooting_absolute_tolerance) {}
+};
+
+TranscriptionNlp::TranscriptionNlp(const TranscriptionModel& model, TranscriptionLayout layout)
+    : model_(&model), layout_(std::move(layout)) {
+  const std::vector<double>& mesh = layout_.mesh;
+  if (mesh.size() < 2 || mesh.front() != 0.0 || mesh.back() != 1.0) {
+    throw std::invalid_argument("transcription mesh must run from 0 to 1 with >= 1 interval");
+  }
+  for (std::size_t k = 1; k < mesh.size(); ++k) {
+    if (!(mesh[k] > mesh[k - 1])) {
+      throw std::invalid_argument("transcription mesh must be strictly increasing");
+    }
+  }
+  buildStructure();
+  evals_.assign(static_cast<std::size_t>(points()), model.makeEvaluation());
+  workspaces_.assign(static_cast<std::size_t>(points()), models::AttitudeWorkspace{});
+  scratch_ = model.makeEvaluation();
+  nu_.assign(static_cast<std::size_t>(points()), StateVector::Zero());
+  last_x_.resize(variableCount());
+  gradient_ = Eigen::VectorXd::Zero(variableCount());
+  constraints_ = Eigen::VectorXd::Zero(constraintCount());
+  jac_values_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(jac_rows_.size()));
+  if (layout_.scheme == TranscriptionScheme::kMultipleShooting) {
+    shooting_ = std::make_unique<Shooting>(model, layout_);
+  }
+}
+
+TranscriptionNlp::~TranscriptionNlp() = default;
+
+bool TranscriptionNlp::isNode(int point) const {
+  return layout_.scheme != TranscriptionScheme::kHermiteSimpson || point % 2 == 0;
+}
+
+int TranscriptionNlp::nodePoint(int node) const {
+  return layout_.scheme == TranscriptionScheme::kHermiteSimpson ? 2 * node : node;
+}
+
+ConstraintRow TranscriptionNlp::row(int row) const {
+  if (row < defect_rows_) {
+    const int block = row / kStateSize;
+    const int interval = layout_.scheme == TranscriptionScheme::kHermiteSimpson ? block / 2 : block;
+    return {true, interval, "defect"};
+  }
+  const int count = model_->constraintCount();
+  const int local = row - defect_rows_;
+  return {false, local / count, model_->constraintName(local % count)};
+}
+
+void TranscriptionNlp::buildStructure() {
+  const std::vector<double>& mesh = layout_.mesh;
+  const int n = intervals();
+  const bool hs = layout_.scheme == TranscriptionScheme::kHermiteSimpson;
+  tau_.clear();
+  for (int k = 0; k < n; ++k) {
+    tau_.push_back(mesh[static_cast<std::size_t>(k)]);
+    if (hs)
+      tau_.push_back(0.5 *
+                     (mesh[static_cast<std::size_t>(k)] + mesh[static_cast<std::size_t>(k) + 1]));
+  }
+  tau_.push_back(1.0);
+  weights_.assign(tau_.size(), 0.0);
+  blocks_.clear();
+  for (int k = 0; k < n; ++k) {
+    const double d = mesh[static_cast<std::size_t>(k) + 1] - mesh[static_cast<std::size_t>(k)];
+    if (hs) {
+      const int a = 2 * k, m = 2 * k + 1, b = 2 * k + 2;
+      weights_[static_cast<std::size_t>(a)] += d / 6.0;
+      weights_[static_cast<std::size_t>(m)] += 4.0 * d / 6.0;
+      weights_[static_cast<std::size_t>(b)] += d / 6.0;
+      blocks_.push_back({{{a, -0.5, d / 8.0}, {m, 1.0, 0.0}, {b, -0.5, -d / 8.0}}, 0, 0});
+      blocks_.push_back({{{a, -1.0, d / 6.0}, {m, 0.0, 4.0 * d / 6.0}, {b, 1.0, d / 6.0}}, 0, 0});
+    } else {
+      weights_[static_cast<std::size_t>(k)] += d / 2.0;
+      weights_[static_cast<std::size_t>(k) + 1] += d / 2.0;
+      blocks_.push_back({{{k, -1.0, d / 2.0}, {k + 1, 1.0, d / 2.0}}, 0, 0});
+    }
+  }
+  const int tf = finalTimeIndex();
+  jac_rows_.clear();
+  jac_cols_.clear();
+  int row = 0;
+  for (DefectBlock& block : blocks_) {
+    block.row = row;
+    block.jac_start = static_cast<int>(jac_rows_.size());
+    for (const Term& term : block.terms) {
+      for (int i = 0; i < kStateSize; ++i) {
+        for (int j = 0; j < kPointSize; ++j) {
+          jac_rows_.push_back(row + i);
+          jac_cols_.push_back(kPointSize * term.point + j);
+        }
+      }
+    }
+    for (int i = 0; i < kStateSize; ++i) {
+      jac_rows_.push_back(row + i);
+      jac_cols_.push_back(tf);
+    }
+    row += kStateSize;
+  }
+  defect_rows_ = row;
+  const int count = model_->constraintCount();
+  path_rows_ = count * points();
+  path_jac_start_ = static_cast<int>(jac_rows_.size());
+  for (int p = 0; p < points(); ++p) {
+    for (int r = 0; r < count; ++r) {
+      for (int j = 0; j < kPointSize; ++j) {
+        jac_rows_.push_back(row);
+        jac_cols_.push_back(kPointSize * p + j);
+      }
+      ++row;
+    }
+  }
+  hess_rows_.clear();
+  hess_cols_.clear();
+  for (int p = 0; p < points(); ++p) {
+    for (int i = 0; i < kPointSize; ++i) {
+      for (int j = 0; j <= i; ++j) {
+        hess_rows_.push_back(kPointSize * p + i);
+        hess_cols_.push_back(kPointSize * p + j);
+      }
+    }
+    for (int j = 0; j < kPointSize; ++j) {
+      hess_rows_.push_back(tf);
+      hess_cols_.push_back(kPointSize * p + j);
+    }
+  }
+  hess_rows_.push_back(tf);
+  hess_cols_.push_back(tf);
+}
+
+bool TranscriptionNlp::evaluatePoints(const Eigen::Map<const Eigen::VectorXd>& x) {
+  const double tf = x(finalTimeIndex());
+  for (int p = 0; p < points(); ++p) {
+    const PointVector w = x.segment<kPointSize>(kPointSize * p);
+    PointEvaluation& e = evals_[static_cast<std::size_t>(p)];
+    const models::AttitudeStatus status =
+        model_->evaluate(w, workspaces_[static_cast<std::size_t>(p)], e);
+    e.point.t = tf * tau_[static_cast<std::size_t>(p)];
+    if (status != models::AttitudeStatus::kOk) {
+      std::ostringstream text;
+      text << "the rover cannot be placed at (" << w(0) << ", " << w(1) << ") at t = " << e.point.t
+           << " s: " << models::attitudeStatusName(status);
+      message_ = text.str();
+      return false;
+    }
+  }
+  return true;
+}
+
+bool TranscriptionNlp::evaluateCollocation(const Eigen::Map<const Eigen::VectorXd>& x) {
+  const double tf = x(finalTimeIndex());
+  for (const DefectBlock& block : blocks_) {
+    StateVector defect = StateVector::Zero();
+    StateVector d_tf = StateVector::Zero();
+    int entry = block.jac_start;
+    for (const Term& term : block.terms) {
+      const PointEvaluation& e = evals_[static_cast<std::size_t>(term.point)];
+      defect +=
+          term.alpha * x.segment<kStateSize>(kPointSize * term.point) - tf * term.beta * e.rate;
+      d_tf -= term.beta * e.rate;
+      Eigen::Matrix<double, kStateSize, kPointSize> jac = -tf * term.beta * e.rate_jacobian;
+      jac.leftCols<kStateSize>().diagonal().array() += term.alpha;
+      for (int i = 0; i < kStateSize; ++i) {
+        for (int j = 0; j < kPointSize; ++j) jac_values_(entry++) = jac(i, j);
+      }
+    }
+    for (int i = 0; i < kStateSize; ++i) jac_values_(entry++) = d_tf(i);
+    constraints_.segment<kStateSize>(block.row) = defect;
+  }
+  return true;
+}
+
+bool TranscriptionNlp::evaluateShooting(const Eigen::Map<const Eigen::VectorXd>& x) {
+  const double tf = x(finalTimeIndex());
+  const bool linear = layout_.shooting_controls == ShootingControls::kPiecewiseLinear;
+  detail::IntervalResult& r = shooting_->result;
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    const DefectBlock& block = blocks_[k];
+    const int a = block.terms[0].point, b = block.terms[1].point;
+    const PointVector wa = x.segment<kPointSize>(kPointSize * a);
+    const PointVector wb = x.segment<kPointSize>(kPointSize * b);
+    const double delta = layout_.mesh[k + 1] - layout_.mesh[k];
+    if (!shooting_->integrator.integrate(wa.head<kStateSize>(), wa.tail<kControlSize>(),
+                                         wb.tail<kControlSize>(), tf, delta, true, r)) {
+      std::ostringstream text;
+      text << "shooting interval " << k << " (from (" << wa(0) << ", " << wa(1)
+           << ")): " << r.message;
+      message_ = text.str();
+      return false;
+    }
+    constraints_.segment<kStateSize>(block.row) = wb.head<kStateSize>() - r.end;
+    Eigen::Matrix<double, kStateSize, kPointSize> ja, jb;
+    ja.leftCols<kStateSize>() = -r.sensitivity.leftCols<kStateSize>();
+    ja.rightCols<kControlSize>() = -r.sensitivity.middleCols<kControlSize>(kStateSize);
+    jb.setZero();
+    jb.leftCols<kStateSize>().setIdentity();
+    if (linear) {
+      jb.rightCols<kControlSize>() =
+          -r.sensitivity.middleCols<kControlSize>(kStateSize + kControlSize);
+    }
+    int entry = block.jac_start;
+    for (const auto* jac : {&ja, &jb}) {
+      for (int i = 0; i < kStateSize; ++i) {
+        for (int j = 0; j < kPointSize; ++j) jac_values_(entry++) = (*jac)(i, j);
+      }
+    }
+    const Eigen::Index tf_column = r.sensitivity.cols() - 1;
+    for (int i = 0; i < kStateSize; ++i) jac_values_(entry++) = -r.sensitivity(i, tf_column);
+  }
+  return true;
+}
+
+void TranscriptionNlp::evaluatePathAndCost(const Eigen::Map<const Eigen::VectorXd>& x) {
+  const double tf = x(finalTimeIndex());
+  const int count = model_->constraintCount();
+  int entry = path_jac_start_;
+  double mean_running = 0.0;
+  gradient_.setZero();
+  for (int p = 0; p < points(); ++p) {
+    const PointEvaluation& e = evals_[static_cast<std::size_t>(p)];
+    constraints_.segment(defect_rows_ + count * p, count) = e.constraints;
+    for (int r = 0; r < count; ++r) {
+      for (int j = 0; j < kPointSize; ++j) jac_values_(entry++) = e.constraint_jacobian(r, j);
+    }
+    const double weight = weights_[static_cast<std::size_t>(p)];
+    mean_running += weight * e.running_cost;
+    gradient_.segment<kPointSize>(kPointSize * p) = tf * weight * e.running_cost_gradient;
+  }
+  objective_ = tf * (1.0 + mean_running);
+  gradient_(finalTimeIndex()) = 1.0 + mean_running;
+}
+
+bool TranscriptionNlp::evaluate(const double* x_data) {
+  const Eigen::Map<const Eigen::VectorXd> x(x_data, variableCount());
+  if (has_last_ && x == last_x_) return last_ok_;
+  has_last_ = true;
+  last_x_ = x;
+  message_.clear();
+  last_ok_ = false;
+  if (!x.allFinite()) {
+    message_ = "non-finite variables";
+    return false;
+  }
+  if (!evaluatePoints(x)) return false;
+  const bool ok = layout_.scheme == TranscriptionScheme::kMultipleShooting ? evaluateShooting(x)
+                                                                           : evaluateCollocation(x);
+  if (!ok) return false;
+  evaluatePathAndCost(x);
+  if (!std::isfinite(objective_) || !gradient_.allFinite() || !constraints_.allFinite() ||
+      !jac_values_.allFinite()) {
+    message_ = "non-finite cost, constraints or derivatives";
+    return false;
+  }
+  last_ok_ = true;
+  return true;
+}
+
+bool TranscriptionNlp::pointLagrangianGradient(const PointVector& w, const StateVector& nu,
+                                               const double* mu, double c,
+                                               models::AttitudeWorkspace& workspace,
+                                               PointVector& out) {
+  if (model_->evaluate(w, workspace, scratch_) != models::AttitudeStatus::kOk) return false;
+  out = scratch_.rate_jacobian.transpose() * nu + c * scratch_.running_cost_gradient;
+  const int count = model_->constraintCount();
+  for (int r = 0; r < count; ++r) {
+    if (mu[r] != 0.0) out += mu[r] * scratch_.constraint_jacobian.row(r).transpose();
+  }
+  return true;
+}
+
+bool TranscriptionNlp::hessian(const double* x_data, double sigma, const double* lambda,
+                               double* values) {
+  if (!hasExactHessian() || !evaluate(x_data)) return false;
+  const Eigen::Map<const Eigen::VectorXd> x(x_data, variableCount());
+  const double tf = x(finalTimeIndex());
+  // nu_p = sum over defect terms at p of beta lambda_block.
+  std::vector<StateVector>& nu = nu_;
+  for (StateVector& v : nu) v.setZero();
+  for (const DefectBlock& block : blocks_) {
+    const Eigen::Map<const StateVector> l(lambda + block.row);
+    for (const Term& term : block.terms) nu[static_cast<std::size_t>(term.point)] += term.beta * l;
+  }
+  const int count = model_->constraintCount();
+  int entry = 0;
+  for (int p = 0; p < points(); ++p) {
+    const std::size_t ps = static_cast<std::size_t>(p);
+    const PointVector w = x.segment<kPointSize>(kPointSize * p);
+    const StateVector scaled_nu = -tf * nu[ps];
+    const double* mu = lambda + defect_rows_ + count * p;
+    const double c = sigma * tf * weights_[ps];
+    Eigen::Matrix<double, kPointSize, kPointSize> h;
+    for (int i = 0; i < kPointSize; ++i) {
+      const double step = kHessianStep * (1.0 + std::abs(w(i)));
+      PointVector plus = w, minus = w, g_plus, g_minus;
+      plus(i) += step;
+      minus(i) -= step;
+      models::AttitudeWorkspace workspace = workspaces_[ps];
+      if (!pointLagrangianGradient(plus, scaled_nu, mu, c, workspace, g_plus)) return false;
+      workspace = workspaces_[ps];
+      if (!pointLagrangianGradient(minus, scaled_nu, mu, c, workspace, g_minus)) return false;
+      h.col(i) = (g_plus - g_minus) / (2.0 * step);
+    }
+    h = 0.5 * (h + h.transpose()).eval();
+    for (int i = 0; i < kPointSize; ++i) {
+      for (int j = 0; j <= i; ++j) values[entry++] = h(i, j);
+    }
+    // d^2 L / d t_f d w_p = -nu' df/dw + sigma omega_p dl/dw.
+    const PointEvaluation& e = evals_[ps];
+    const PointVector cross =
+        -(e.rate_jacobian.transpose() * nu[ps]) + sigma * weights_[ps] * e.running_cost_gradient;
+    for (int j = 0; j < kPointSize; ++j) values[entry++] = cross(j);
+  }
+  values[entry] = 0.0;  // L is linear in t_f
+  return true;
+}
+
+}  // namespace terratraj::ocp

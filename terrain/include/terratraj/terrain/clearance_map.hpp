@@ -1,0 +1,44 @@
+#pragma once
+// ClearanceMap: distance from any point of the map to the nearest impassable cell (lethal or
+// no data), from an exact Euclidean distance transform of the grid (Felzenszwalb &
+// Huttenlocher), interpolated bilinearly between cell centres so that it is continuous with a
+// piecewise-smooth gradient: the clearance constraint of the optimisers uses it.
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "terratraj/terrain/elevation_map.hpp"
+
+namespace terratraj::terrain {
+
+/// Clearance at a point and its gradient.
+struct Clearance {
+  double distance = 0.0;                               ///< [m]; <= 0 inside an impassable cell
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();  ///< d distance / d (x, y) [m/m]
+};
+
+/// Clearance from the impassable cells of one map. Immutable after construction.
+class ClearanceMap {
+ public:
+  /// Distance transform of `map`'s lethal and no-data cells. The clearance of a cell centre is
+  /// the distance to the nearest impassable cell centre minus half a cell (about the distance
+  /// to that cell's edge), negative inside one. A map with no impassable cell gets
+  /// `max_distance` everywhere. Throws std::bad_alloc only.
+  explicit ClearanceMap(const ElevationMap& map, double max_distance = 1e3);
+
+  /// Clearance at a local point [m], bilinear between cell centres (clamped at the borders);
+  /// std::nullopt outside the map or for NaN coordinates. Never throws.
+  std::optional<Clearance> at(const Eigen::Vector2d& local) const;
+
+  /// Clearance of a cell centre [m].
+  double cellClearance(CellIndex c) const { return distance_[geometry_.linearIndex(c)]; }
+
+  const GridGeometry& geometry() const { return geometry_; }
+
+ private:
+  GridGeometry geometry_;
+  std::vector<double> distance_;
+};
+
+}  // namespace terratraj::terrain

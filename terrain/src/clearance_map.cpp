@@ -1,0 +1,108 @@
+#include "terratraj/terrain/clearance_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace terratraj::terrain {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// One-dimensional squared distance transform of f (Felzenszwalb & Huttenlocher 2012) into d,
+// with unit spacing; every f is finite (cells without an obstacle hold a large value). v, z
+// are scratch of size n and n + 1.
+void transform1d(const double* f, int n, double* d, std::vector<int>& v, std::vector<double>& z) {
+  std::size_t k = 0;
+  v[0] = 0;
+  z[0] = -kInfinity;
+  z[1] = kInfinity;
+  const auto intersection = [f](int q, int p) {
+    return ((f[q] + static_cast<double>(q) * q) - (f[p] + static_cast<double>(p) * p)) /
+           (2.0 * (q - p));
+  };
+  for (int q = 1; q < n; ++q) {
+    double s = intersection(q, v[k]);
+    while (s <= z[k]) {
+      --k;
+      s = intersection(q, v[k]);
+    }
+    ++k;
+    v[k] = q;
+    z[k] = s;
+    z[k + 1] = kInfinity;
+  }
+  k = 0;
+  for (int q = 0; q < n; ++q) {
+    while (z[k + 1] < q) ++k;
+    const double offset = q - v[k];
+    d[q] = offset * offset + f[v[k]];
+  }
+}
+
+}  // namespace
+
+ClearanceMap::ClearanceMap(const ElevationMap& map, double max_distance)
+    : geometry_(map.geometry()) {
+  const int rows = geometry_.rows, cols = geometry_.cols;
+  // Larger than any squared distance on the grid: "no obstacle in this line yet".
+  const double far =
+      4.0 * (static_cast<double>(rows) * rows + static_cast<double>(cols) * cols) + 1.0;
+  std::vector<double> squared(geometry_.cellCount(), far);
+  bool any = false;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      const CellIndex cell{r, c};
+      if (map.isLethal(cell) || map.isNoData(cell)) {
+        squared[geometry_.linearIndex(cell)] = 0.0;
+        any = true;
+      }
+    }
+  }
+  distance_.assign(geometry_.cellCount(), max_distance);
+  if (!any) return;
+  const int longest = std::max(rows, cols);
+  std::vector<int> v(static_cast<std::size_t>(longest));
+  std::vector<double> z(static_cast<std::size_t>(longest) + 1);
+  std::vector<double> line(static_cast<std::size_t>(longest)), out(line.size());
+  for (int r = 0; r < rows; ++r) {  // along each row
+    double* row = squared.data() + static_cast<std::size_t>(r) * cols;
+    std::copy(row, row + cols, line.begin());
+    transform1d(line.data(), cols, row, v, z);
+  }
+  for (int c = 0; c < cols; ++c) {  // then along each column
+    for (int r = 0; r < rows; ++r)
+      line[static_cast<std::size_t>(r)] = squared[geometry_.linearIndex({r, c})];
+    transform1d(line.data(), rows, out.data(), v, z);
+    for (int r = 0; r < rows; ++r)
+      squared[geometry_.linearIndex({r, c})] = out[static_cast<std::size_t>(r)];
+  }
+  for (std::size_t i = 0; i < squared.size(); ++i) {
+    const double d =
+        squared[i] == 0.0 ? -0.5 * geometry_.cell : geometry_.cell * (std::sqrt(squared[i]) - 0.5);
+    distance_[i] = std::min(d, max_distance);
+  }
+}
+
+std::optional<Clearance> ClearanceMap::at(const Eigen::Vector2d& p) const {
+  if (!p.allFinite() || !geometry_.contains(p)) return std::nullopt;
+  const double h = geometry_.cell;
+  // Coordinates in cell-centre units, clamped so the four centres exist.
+  const double gx = std::clamp(p.x() / h - 0.5, 0.0, std::max(0.0, geometry_.cols - 1.0));
+  const double gy = std::clamp(p.y() / h - 0.5, 0.0, std::max(0.0, geometry_.rows - 1.0));
+  const int c0 = std::min(static_cast<int>(gx), std::max(0, geometry_.cols - 2));
+  const int r0 = std::min(static_cast<int>(gy), std::max(0, geometry_.rows - 2));
+  const int c1 = std::min(c0 + 1, geometry_.cols - 1), r1 = std::min(r0 + 1, geometry_.rows - 1);
+  const double fx = gx - c0, fy = gy - r0;
+  const double d00 = cellClearance({r0, c0}), d01 = cellClearance({r0, c1});
+  const double d10 = cellClearance({r1, c0}), d11 = cellClearance({r1, c1});
+  Clearance out;
+  out.distance = (1 - fy) * ((1 - fx) * d00 + fx * d01) + fy * ((1 - fx) * d10 + fx * d11);
+  const bool interior_x = p.x() / h - 0.5 > 0.0 && p.x() / h - 0.5 < geometry_.cols - 1.0;
+  const bool interior_y = p.y() / h - 0.5 > 0.0 && p.y() / h - 0.5 < geometry_.rows - 1.0;
+  out.gradient.x() = interior_x ? ((1 - fy) * (d01 - d00) + fy * (d11 - d10)) / h : 0.0;
+  out.gradient.y() = interior_y ? ((1 - fx) * (d10 - d00) + fx * (d11 - d01)) / h : 0.0;
+  return out;
+}
+
+}  // namespace terratraj::terrain

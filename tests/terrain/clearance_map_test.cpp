@@ -1,0 +1,60 @@
+#include "terratraj/terrain/clearance_map.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace terratraj::terrain {
+namespace {
+
+ElevationMap mapWithLethalCells(const std::vector<CellIndex>& cells) {
+  GridGeometry geometry;
+  geometry.rows = 30;
+  geometry.cols = 40;
+  geometry.cell = 0.5;
+  ElevationMap map(geometry);
+  GridLayer& lethal = map.addLayer("lethal");
+  for (const CellIndex& c : cells) lethal(c) = 1.0f;
+  return map;
+}
+
+TEST(ClearanceMap, MatchesBruteForceDistances) {
+  const std::vector<CellIndex> obstacles = {{3, 4}, {20, 30}, {10, 10}, {10, 11}, {29, 0}};
+  const ElevationMap map = mapWithLethalCells(obstacles);
+  const ClearanceMap clearance(map);
+  const GridGeometry& g = map.geometry();
+  for (int r = 0; r < g.rows; ++r) {
+    for (int c = 0; c < g.cols; ++c) {
+      double best = 1e9;
+      for (const CellIndex& o : obstacles) {
+        best = std::min(best, g.cell * std::hypot(r - o.row, c - o.col));
+      }
+      EXPECT_NEAR(clearance.cellClearance({r, c}), best - 0.5 * g.cell, 1e-9) << r << ", " << c;
+    }
+  }
+}
+
+TEST(ClearanceMap, GradientMatchesDifferencesAndOffMapIsEmpty) {
+  const ElevationMap map = mapWithLethalCells({{15, 20}});
+  const ClearanceMap clearance(map);
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(3.1, 4.2), Eigen::Vector2d(12.3, 9.9)}) {
+    const std::optional<Clearance> c = clearance.at(p);
+    ASSERT_TRUE(c.has_value());
+    const double h = 1e-6;
+    const double dx = (clearance.at(p + Eigen::Vector2d(h, 0))->distance -
+                       clearance.at(p - Eigen::Vector2d(h, 0))->distance) /
+                      (2 * h);
+    const double dy = (clearance.at(p + Eigen::Vector2d(0, h))->distance -
+                       clearance.at(p - Eigen::Vector2d(0, h))->distance) /
+                      (2 * h);
+    EXPECT_NEAR(c->gradient.x(), dx, 1e-6);
+    EXPECT_NEAR(c->gradient.y(), dy, 1e-6);
+  }
+  EXPECT_FALSE(clearance.at({-1.0, 2.0}).has_value());
+  EXPECT_FALSE(clearance.at({NAN, 2.0}).has_value());
+  const ClearanceMap open(mapWithLethalCells({}), 50.0);
+  EXPECT_DOUBLE_EQ(open.at({3.0, 3.0})->distance, 50.0);
+}
+
+}  // namespace
+}  // namespace terratraj::terrain
