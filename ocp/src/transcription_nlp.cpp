@@ -354,6 +354,11 @@ bool TranscriptionNlp::hessian(const double* x_data, double sigma, const double*
     for (int j = 0; j < kPointSize; ++j) values[entry++] = cross(j);
   }
   values[entry] = 0.0;  // L is linear in t_f
+  const Eigen::Map<const Eigen::VectorXd> all(values, entry + 1);
+  if (!all.allFinite()) {
+    message_ = "non-finite Hessian";
+    return false;
+  }
   return true;
 }
 

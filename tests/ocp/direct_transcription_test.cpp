@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "boundary_value_fixtures.hpp"
@@ -180,6 +181,277 @@ TEST(DirectTranscription, ShootingWithPiecewiseConstantControlsAndTheSegwayMatch
     TranscriptionNlp nlp(model, layout);
     expectDerivativesMatch(nlp, perturbedVariables(nlp, straightGuess(problem), 9), 2e-5);
   }
+}
+
+// Solves and re-simulates; the re-simulation must reach the goal.
+struct Solved {
+  TranscriptionSolution solution;
+  VerifiedTrajectory verified;
+};
+Solved solveAndVerify(const models::TerrainFollowingModel& vehicle,
+                      const BoundaryValueProblem& problem, const TranscriptionGuess& guess,
+                      const DirectTranscriptionOptions& options, double goal_tolerance = 1e-3) {
+  Solved out;
+  out.solution = solveDirectTranscription(vehicle, problem, guess, options);
+  EXPECT_EQ(out.solution.result.status, SolveStatus::kConverged)
+      << out.solution.result.reason << " / " << out.solution.ipopt_status;
+  const TranscriptionModel model(vehicle, problem, options.model);
+  out.verified = verifyTranscriptionSolution(model, out.solution, nullptr);
+  EXPECT_TRUE(out.verified.ok) << out.verified.message;
+  EXPECT_LT(out.verified.terminal_error.head<2>().norm(), goal_tolerance);
+  EXPECT_LT(std::abs(out.verified.terminal_error.z()), goal_tolerance);
+  EXPECT_LT(out.verified.terminal_speed_error.cwiseAbs().maxCoeff(), 1e-6);
+  std::printf("  %s: t_f %.6f (re-simulated %.6f), cost %.6f, %d iterations, %.1f ms, worst %s %.3g\n",
+              out.solution.result.method.c_str(), out.solution.final_time, out.verified.final_time,
+              out.verified.cost, out.solution.result.iterations, out.solution.result.solve_time_ms,
+              out.verified.violation.limit.c_str(), out.verified.violation.amount);
+  return out;
+}
+
+TEST(DirectTranscription, RestToRestIsBangBangWithinHalfAPercent) {
+  const terrain::ElevationMap map = fixtures::flatMap();
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::PointAttitudeModel vehicle(surface);
+  const double d = 4.0, a_max = 0.5;
+  for (const double v_max : {2.0, 1.0}) {  // not reached, reached
+    for (const TranscriptionScheme scheme :
+         {TranscriptionScheme::kHermiteSimpson, TranscriptionScheme::kTrapezoidal,
+          TranscriptionScheme::kMultipleShooting}) {
+      SCOPED_TRACE(std::string(transcriptionSchemeName(scheme)) + " v_max " +
+                   std::to_string(v_max));
+      BoundaryValueProblem problem = restToRest(5.0, 10.0, 5.0 + d, 10.0, 0.0);
+      problem.limits.a_max = a_max;
+      problem.limits.v_max = v_max;
+      DirectTranscriptionOptions options;
+      options.scheme = scheme;
+      options.intervals = 50;
+      // A little control effort picks one control on the singular arc at v_max (without it the
+      // controls there ring between nodes: any alternating sequence has the same time).
+      options.model.control_effort_weight = 1e-4;
+      const Solved s = solveAndVerify(vehicle, problem, straightGuess(problem), options,
+                                      scheme == TranscriptionScheme::kTrapezoidal ? 5e-3 : 1e-3);
+      const double optimum =
+          v_max * v_max / a_max >= d ? 2.0 * std::sqrt(d / a_max) : d / v_max + v_max / a_max;
+      EXPECT_NEAR(s.solution.final_time / optimum, 1.0, 0.005);
+      EXPECT_NEAR(s.verified.final_time / optimum, 1.0, 0.005);
+      // Bang-bang at the nodes: |v'| = a_max, or v' ~ 0 at v = v_max (on that singular arc
+      // collocation's controls ring between nodes, damped by the control effort), except in
+      // the intervals around the switches.
+      int bang = 0, nodes = 0;
+      for (std::size_t p = 0; p < s.solution.points.size(); ++p) {
+        if (scheme == TranscriptionScheme::kHermiteSimpson && p % 2 == 1) continue;
+        const PointVector& w = s.solution.points[p];
+        ++nodes;
+        const bool saturated = std::abs(std::abs(w(5)) - a_max) < 1e-3 * a_max;
+        const bool cruising = w(3) > 0.99 * v_max;
+        if (saturated || cruising) ++bang;
+      }
+      EXPECT_GE(bang, nodes - 4);
+      EXPECT_GT(s.solution.points[1](5), 0.99 * a_max);
+      EXPECT_LT(s.solution.points[s.solution.points.size() - 2](5), -0.99 * a_max);
+    }
+  }
+}
+
+TEST(DirectTranscription, CurvatureBoundedConstantSpeedIsWithinTwoPercentOfDubins) {
+  const terrain::ElevationMap map = fixtures::flatMap();
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::PointAttitudeModel vehicle(surface);
+  struct Case {
+    double x1, y1, h1;
+  };
+  for (const Case c : {Case{9.0, 13.0, kPi / 2}, Case{12.0, 8.0, -kPi / 4}, Case{6.0, 12.0, kPi}}) {
+    SCOPED_TRACE("goal " + std::to_string(c.x1) + ", " + std::to_string(c.y1));
+    BoundaryValueProblem problem = fixtures::cruise(5.0, 10.0, 0.0, c.x1, c.y1, c.h1);
+    problem.limits.v_max = 0.5;  // the start and goal speed: constant speed
+    problem.limits.kappa_max = 1.0;
+    problem.limits.sigma_max = 50.0;  // loose
+    const double dubins = testing::dubinsLength(5.0, 10.0, 0.0, c.x1, c.y1, c.h1, 1.0);
+    DirectTranscriptionOptions options;
+    options.intervals = 80;
+    options.model.control_effort_weight = 1e-4;
+    const Solved loose = solveAndVerify(vehicle, problem, straightGuess(problem), options, 1e-2);
+    const double ratio = loose.verified.final_time * 0.5 / dubins;
+    EXPECT_GE(ratio, 1.0 - 1e-4);
+    EXPECT_LE(ratio, 1.02);
+    // Limits hold at the points; between them the interpolated yaw rate may pass kappa v.
+    EXPECT_LT(loose.verified.violation.amount, 0.1) << loose.verified.violation.limit;
+    // A tight curvature rate makes it longer.
+    problem.limits.sigma_max = 0.5;
+    const Solved tight = solveAndVerify(vehicle, problem, loose.solution.asGuess(), options, 1e-2);
+    EXPECT_GT(tight.verified.final_time, loose.verified.final_time);
+  }
+}
+
+TEST(DirectTranscription, SegwayPitchLimitIsActiveWhereItMustBe) {
+  // Downhill (slope -0.1 rad along +x): the platform leans back when braking; uphill it leans
+  // forward when accelerating. Limit 0.15 rad: braking downhill and accelerating uphill are
+  // held to about 0.5 m/s^2, the other phases to a_max.
+  for (const double slope : {-0.1, 0.1}) {
+    SCOPED_TRACE("slope " + std::to_string(slope));
+    const terrain::ElevationMap map = rampMap(std::tan(slope));
+    const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+    const models::PointAttitudeModel vehicle(surface);
+    BoundaryValueProblem problem = restToRest(3.0, 5.0, 11.0, 5.0, 0.0);
+    problem.limits.a_max = 2.0;
+    problem.limits.v_max = 3.0;
+    problem.limits.pitch_max = 0.15;
+    DirectTranscriptionOptions options;
+    options.intervals = 60;
+    options.model.control_effort_weight = 1e-4;
+    options.model.segway = SegwayConstraints{models::defaultSegwayLookups()};
+    const Solved s = solveAndVerify(vehicle, problem, straightGuess(problem), options);
+    const TranscriptionModel model(vehicle, problem, options.model);
+    models::AttitudeWorkspace workspace;
+    PointEvaluation e = model.makeEvaluation();
+    int active_braking = 0, active_accelerating = 0;
+    for (const PointVector& w : s.solution.points) {
+      ASSERT_EQ(model.evaluate(w, workspace, e), models::AttitudeStatus::kOk);
+      EXPECT_LE(std::abs(e.platform_pitch) - problem.limits.pitch_max, 1e-6);
+    }
+    for (const ActiveConstraint& a : s.solution.active) {
+      if (a.name != std::string("pitch_max")) continue;
+      EXPECT_GT(a.multiplier, 0.0);
+      const double v_dot = s.solution.points[static_cast<std::size_t>(a.point)](5);
+      if (v_dot < -0.1) ++active_braking;
+      if (v_dot > 0.1) ++active_accelerating;
+    }
+    if (slope < 0.0) {
+      EXPECT_GT(active_braking, 5);
+      EXPECT_EQ(active_accelerating, 0);
+    } else {
+      EXPECT_GT(active_accelerating, 5);
+      EXPECT_EQ(active_braking, 0);
+    }
+  }
+}
+
+TEST(DirectTranscription, NeverWorseThanTheParametricOptimumBeyondDiscretisation) {
+  const terrain::ElevationMap map = fixtures::singleHillMap();
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::PointAttitudeModel vehicle(surface);
+  for (const double alpha : {0.0, 2.0}) {
+    SCOPED_TRACE("alpha " + std::to_string(alpha));
+    const BoundaryValueProblem problem = fixtures::singleHillProblem(alpha);
+    const BoundaryValueSolution parametric = solveBoundaryValue(vehicle, problem, {}, &map);
+    ASSERT_EQ(parametric.status, SolveStatus::kConverged) << parametric.reason;
+    const std::optional<TranscriptionGuess> guess =
+        guessFromTrajectory(parametric.verified.trajectory);
+    ASSERT_TRUE(guess.has_value());
+    DirectTranscriptionOptions options;
+    options.intervals = 60;
+    const Solved s = solveAndVerify(vehicle, problem, *guess, options);
+    // The discretisation error: the transcription's cost against its own re-simulation.
+    const double discretisation = std::abs(s.solution.result.cost - s.verified.cost);
+    EXPECT_LE(s.verified.cost, parametric.verified.cost + discretisation + 1e-6);
+    EXPECT_LT(discretisation, 1e-3 * parametric.verified.cost);
+  }
+}
+
+TEST(DirectTranscription, WarmStartsFromAnXyPathAndRefinesTheMesh) {
+  const terrain::ElevationMap map = fixtures::roughMap();
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::RockerBogieAttitudeModel vehicle(surface);
+  BoundaryValueProblem problem = restToRest(2.0, 2.0, 13.0, 9.0, 0.0);
+  problem.goal.heading = kPi / 2;
+  problem.limits.v_max = 1.0;
+  problem.limits.a_max = 0.5;
+  problem.limits.kappa_max = 1.0;
+  // A path with only x, y: an L with a corner.
+  models::Trajectory path;
+  path.has_column[static_cast<std::size_t>(models::TrajectoryColumn::kX)] = true;
+  path.has_column[static_cast<std::size_t>(models::TrajectoryColumn::kY)] = true;
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(2, 2), Eigen::Vector2d(8, 2.5),
+                                   Eigen::Vector2d(13, 4), Eigen::Vector2d(13, 9)}) {
+    models::TrajectorySample sample = models::TrajectorySample::unknown();
+    sample.x = p.x();
+    sample.y = p.y();
+    path.samples.push_back(sample);
+  }
+  std::string why;
+  const std::optional<TranscriptionGuess> guess = guessFromCandidate(path, problem, &why);
+  ASSERT_TRUE(guess.has_value()) << why;
+  DirectTranscriptionOptions options;
+  options.intervals = 12;
+  options.model.control_effort_weight = 1e-3;
+  options.refinement.max_rounds = 3;
+  options.refinement.tolerance = 1e-3;
+  const Solved s = solveAndVerify(vehicle, problem, *guess, options, 2e-2);
+  ASSERT_GE(s.solution.refinement.size(), 2u);
+  EXPECT_GT(s.solution.refinement.back().intervals, 12);
+  EXPECT_LT(s.solution.refinement.back().max_interval_error,
+            s.solution.refinement.front().max_interval_error);
+  // Limits hold at the points; between them the interpolated yaw rate may pass kappa v.
+  EXPECT_LT(s.verified.violation.amount, 0.25) << s.verified.violation.limit;
+}
+
+TEST(DirectTranscription, FailuresAreStatusesWithIpoptsReason) {
+  const terrain::ElevationMap map = rampMap(std::tan(-0.1));
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::PointAttitudeModel vehicle(surface);
+  BoundaryValueProblem problem = restToRest(3.0, 5.0, 11.0, 5.0, 0.0);
+  const TranscriptionGuess guess = straightGuess(problem);
+  // A pitch limit below the slope: even standing still breaks it.
+  DirectTranscriptionOptions segway;
+  segway.intervals = 20;
+  segway.max_iterations = 100;
+  segway.model.segway = SegwayConstraints{models::defaultSegwayLookups()};
+  BoundaryValueProblem steep = problem;
+  steep.limits.pitch_max = 0.05;
+  const TranscriptionSolution infeasible = solveDirectTranscription(vehicle, steep, guess, segway);
+  // Ipopt with L-BFGS (the Segway's default) may run out of iterations before it proves it.
+  EXPECT_TRUE(infeasible.result.status == SolveStatus::kInfeasible ||
+              infeasible.result.status == SolveStatus::kMaxIterations)
+      << infeasible.result.reason;
+  EXPECT_FALSE(infeasible.ipopt_status.empty());
+  // Inconsistent bounds.
+  DirectTranscriptionOptions bounds;
+  bounds.min_final_time = 5.0;
+  bounds.max_final_time = 1.0;
+  EXPECT_EQ(solveDirectTranscription(vehicle, problem, guess, bounds).result.status,
+            SolveStatus::kError);
+  // A goal beyond reach in the final-time bound.
+  DirectTranscriptionOptions short_time;
+  short_time.max_final_time = 1.0;
+  short_time.intervals = 10;
+  EXPECT_EQ(solveDirectTranscription(vehicle, problem, guess, short_time).result.status,
+            SolveStatus::kInfeasible);
+  // Too few degrees of freedom: one trapezoidal interval between fixed states.
+  DirectTranscriptionOptions one;
+  one.scheme = TranscriptionScheme::kTrapezoidal;
+  one.intervals = 1;
+  const TranscriptionSolution few = solveDirectTranscription(vehicle, problem, guess, one);
+  EXPECT_EQ(few.result.status, SolveStatus::kInfeasible) << few.result.reason;
+  // Exact Hessian asked of shooting; iteration limit; empty guess.
+  DirectTranscriptionOptions shooting;
+  shooting.scheme = TranscriptionScheme::kMultipleShooting;
+  shooting.hessian = TranscriptionHessian::kExact;
+  EXPECT_EQ(solveDirectTranscription(vehicle, problem, guess, shooting).result.status,
+            SolveStatus::kError);
+  DirectTranscriptionOptions capped;
+  capped.max_iterations = 2;
+  const TranscriptionSolution stopped = solveDirectTranscription(vehicle, problem, guess, capped);
+  EXPECT_EQ(stopped.result.status, SolveStatus::kMaxIterations);
+  EXPECT_EQ(stopped.ipopt_status, "Maximum_Iterations_Exceeded");
+  EXPECT_EQ(solveDirectTranscription(vehicle, problem, TranscriptionGuess{}, {}).result.status,
+            SolveStatus::kError);
+  // Off the map.
+  BoundaryValueProblem off = problem;
+  off.goal.x = 40.0;
+  const TranscriptionSolution off_map =
+      solveDirectTranscription(vehicle, off, straightGuess(off), {});
+  EXPECT_NE(off_map.result.status, SolveStatus::kConverged);
+  EXPECT_NE(off_map.result.reason.find("cannot be placed"), std::string::npos)
+      << off_map.result.reason;
+}
+
+TEST(DubinsReference, KnownLengths) {
+  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 10, 0, 0, 1.0), 10.0, 1e-9);
+  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 1, 1, kPi / 2, 1.0), kPi / 2, 1e-9);
+  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 0, 2, kPi, 1.0), kPi, 1e-9);
+  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 0, -2, kPi, 1.0), kPi, 1e-9);
+  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 5, 1, 0, 1.0),
+              testing::dubinsLength(0, 0, 0, 5, -1, 0, 1.0), 1e-9);  // mirror
 }
 
 }  // namespace

@@ -12,7 +12,11 @@ namespace terratraj::ocp::testing {
 inline double dubinsLength(double x0, double y0, double h0, double x1, double y1, double h1,
                            double radius) {
   constexpr double kTwoPi = 6.28318530717958647692;
-  const auto mod = [&](double a) { return a - kTwoPi * std::floor(a / kTwoPi); };
+  // Angle in [0, 2 pi), with rounding just below 2 pi taken as 0 (a zero-length arc).
+  const auto mod = [&](double a) {
+    const double r = a - kTwoPi * std::floor(a / kTwoPi);
+    return r > kTwoPi - 1e-9 ? 0.0 : r;
+  };
   const double dx = (x1 - x0) / radius, dy = (y1 - y0) / radius;
   const double d = std::hypot(dx, dy);
   const double theta = mod(std::atan2(dy, dx));
@@ -22,26 +26,30 @@ inline double dubinsLength(double x0, double y0, double h0, double x1, double y1
   double best = std::numeric_limits<double>::infinity();
   // LSL
   double p2 = 2 + d * d - 2 * cab + 2 * d * (sa - sb);
-  if (p2 >= 0) {
+  if (p2 >= -1e-10) {
+    p2 = std::max(p2, 0.0);
     const double tmp = std::atan2(cb - ca, d + sa - sb);
     best = std::min(best, mod(-a + tmp) + std::sqrt(p2) + mod(b - tmp));
   }
   // RSR
   p2 = 2 + d * d - 2 * cab + 2 * d * (sb - sa);
-  if (p2 >= 0) {
+  if (p2 >= -1e-10) {
+    p2 = std::max(p2, 0.0);
     const double tmp = std::atan2(ca - cb, d - sa + sb);
     best = std::min(best, mod(a - tmp) + std::sqrt(p2) + mod(-b + tmp));
   }
   // LSR
   p2 = -2 + d * d + 2 * cab + 2 * d * (sa + sb);
-  if (p2 >= 0) {
+  if (p2 >= -1e-10) {
+    p2 = std::max(p2, 0.0);
     const double p = std::sqrt(p2);
     const double tmp = std::atan2(-ca - cb, d + sa + sb) - std::atan2(-2.0, p);
     best = std::min(best, mod(-a + tmp) + p + mod(-mod(b) + tmp));
   }
   // RSL
   p2 = -2 + d * d + 2 * cab - 2 * d * (sa + sb);
-  if (p2 >= 0) {
+  if (p2 >= -1e-10) {
+    p2 = std::max(p2, 0.0);
     const double p = std::sqrt(p2);
     const double tmp = std::atan2(ca + cb, d - sa - sb) - std::atan2(2.0, p);
     best = std::min(best, mod(a - tmp) + p + mod(b - tmp));

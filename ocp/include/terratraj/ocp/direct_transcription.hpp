@@ -44,7 +44,8 @@ struct DirectTranscriptionOptions {
   TranscriptionScheme scheme = TranscriptionScheme::kHermiteSimpson;
   ShootingControls shooting_controls = ShootingControls::kPiecewiseLinear;
   int intervals = 40;  ///< N, >= 1
-  /// Unset: exact for collocation, limited-memory for shooting.
+  /// Unset: exact for collocation, limited-memory for shooting and for the Segway (whose
+  /// piecewise-bilinear look-ups have no useful second derivatives).
   std::optional<TranscriptionHessian> hessian;
   TranscriptionScaling scaling = TranscriptionScaling::kUser;
   double min_final_time = 1e-2;        ///< lower bound of t_f [s], > 0
@@ -54,6 +55,7 @@ struct DirectTranscriptionOptions {
   double tolerance = 1e-8;             ///< Ipopt's tol (scaled KKT error)
   double constraint_tolerance = 1e-8;  ///< Ipopt's constr_viol_tol (unscaled) [state units]
   MeshRefinementOptions refinement;
+  int print_level = 0;  ///< Ipopt's print_level (0: silent; 5: its iteration log on stdout)
   TranscriptionModelOptions model;  ///< control effort, Segway constraints, clearance
 };
 
