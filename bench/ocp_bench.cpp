@@ -13,6 +13,7 @@
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/rocker_bogie_attitude_model.hpp"
 #include "terratraj/ocp/boundary_value_solver.hpp"
+#include "terratraj/ocp/direct_transcription.hpp"
 
 namespace {
 
@@ -76,6 +77,50 @@ void BM_FlatFan45(benchmark::State& state) {
 // Arguments: 0 newton, 1 newton_fd, 2 ipopt, 3 ceres.
 BENCHMARK(BM_RoughLattice94)->DenseRange(0, 3)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FlatFan45)->DenseRange(0, 3)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+// Direct transcription (Hermite-Simpson collocation, exact Hessian) on rough terrain: rest to
+// rest from (2, 2, 0) to (14, 10, 90 deg) across the generated hills, from a straight-line
+// guess. Arguments: N; cost 0 time, 1 slope dwell (alpha = 2); model 0 point, 1 rocker-bogie;
+// scheme 0 Hermite-Simpson, 1 trapezoidal.
+void BM_CollocationRough(benchmark::State& state) {
+  static const Rough rough;
+  static const models::PointAttitudeModel point{rough.surface};
+  const models::TerrainFollowingModel& vehicle =
+      state.range(2) == 0 ? static_cast<const models::TerrainFollowingModel&>(point)
+                          : rough.vehicle;
+  ocp::BoundaryValueProblem problem;
+  problem.start = {2.0, 2.0, 0.0, 0.0, 0.0};
+  problem.goal = {14.0, 10.0, 1.5707963267948966, 0.0, 0.0};
+  problem.limits = ocp::fixtures::looseLimits();
+  problem.limits.v_max = 1.0;
+  problem.limits.a_max = 0.5;
+  problem.limits.kappa_max = 1.0;
+  problem.limits.sigma_max = 2.0;
+  if (state.range(1) == 1) problem.cost = {ocp::CostKind::kSlopeDwell, 2.0};
+  const ocp::TranscriptionGuess guess = *ocp::guessFromPath({{2.0, 2.0}, {14.0, 10.0}}, problem);
+  ocp::DirectTranscriptionOptions options;
+  options.intervals = static_cast<int>(state.range(0));
+  options.scheme = state.range(3) == 0 ? ocp::TranscriptionScheme::kHermiteSimpson
+                                       : ocp::TranscriptionScheme::kTrapezoidal;
+  options.model.control_effort_weight = 1e-3;
+  int iterations = 0, converged = 0, solves = 0;
+  double total_ms = 0.0;
+  for (auto _ : state) {
+    const ocp::TranscriptionSolution s =
+        ocp::solveDirectTranscription(vehicle, problem, guess, options);
+    iterations += s.result.iterations;
+    total_ms += s.result.solve_time_ms;
+    converged += s.result.status == ocp::SolveStatus::kConverged ? 1 : 0;
+    ++solves;
+  }
+  state.counters["converged"] = static_cast<double>(converged) / solves;
+  state.counters["iterations"] = static_cast<double>(iterations) / solves;
+  state.counters["ms_per_iteration"] = iterations > 0 ? total_ms / iterations : 0.0;
+}
+BENCHMARK(BM_CollocationRough)
+    ->ArgsProduct({{50, 100, 200}, {0, 1}, {0, 1}, {0, 1}})
+    ->Iterations(3)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

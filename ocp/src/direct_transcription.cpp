@@ -65,6 +65,19 @@ class IpoptTranscription final : public Ipopt::TNLP {
       lo[5] = -l.a_max;
       hi[5] = l.a_max;
     }
+    // The map's extent, inset by the margin (unless the boundary states are closer to its edge).
+    const terrain::GridGeometry& map = nlp_.model().kinematics().model().surface().map().geometry();
+    const double margin = options_.map_margin;
+    const double x_lo = std::min({margin, problem_.start.x, problem_.goal.x});
+    const double y_lo = std::min({margin, problem_.start.y, problem_.goal.y});
+    const double x_hi = std::max({map.width() - margin, problem_.start.x, problem_.goal.x});
+    const double y_hi = std::max({map.height() - margin, problem_.start.y, problem_.goal.y});
+    for (int p = 0; p < nlp_.points(); ++p) {
+      x_l[kPointSize * p] = x_lo;
+      x_u[kPointSize * p] = x_hi;
+      x_l[kPointSize * p + 1] = y_lo;
+      x_u[kPointSize * p + 1] = y_hi;
+    }
     // Boundary states fixed (the goal heading unwrapped next to the guess's, in x0).
     const int last = kPointSize * (nlp_.points() - 1);
     for (int i = 0; i < kStateSize; ++i) {
@@ -148,8 +161,9 @@ class IpoptTranscription final : public Ipopt::TNLP {
 
   bool intermediate_callback(Ipopt::AlgorithmMode, Ipopt::Index iter, Ipopt::Number obj_value,
                              Ipopt::Number inf_pr, Ipopt::Number inf_du, Ipopt::Number,
-                             Ipopt::Number, Ipopt::Number, Ipopt::Number, Ipopt::Number alpha_pr, Ipopt::Index,
-                             const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+                             Ipopt::Number, Ipopt::Number, Ipopt::Number, Ipopt::Number alpha_pr,
+                             Ipopt::Index, const Ipopt::IpoptData*,
+                             Ipopt::IpoptCalculatedQuantities*) override {
     IterationRecord record;
     record.iteration = static_cast<int>(history_.size());
     record.terminal_error = inf_pr;  // the defects: terminal states are bounds
@@ -250,12 +264,14 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
                         : options.scaling == TranscriptionScaling::kGradientBased ? "gradient-based"
                                                                                   : "none";
   bool ok =
-      ipopt.SetStringValue("sb", "yes") && ipopt.SetIntegerValue("print_level", options.print_level) &&
+      ipopt.SetStringValue("sb", "yes") &&
+      ipopt.SetIntegerValue("print_level", options.print_level) &&
       ipopt.SetStringValue("linear_solver", "mumps") &&
       ipopt.SetStringValue("hessian_approximation",
                            hessian == TranscriptionHessian::kExact ? "exact" : "limited-memory") &&
       ipopt.SetStringValue("nlp_scaling_method", scaling) &&
       ipopt.SetStringValue("mu_strategy", "adaptive") &&
+      ipopt.SetStringValue("print_timing_statistics", options.print_level > 0 ? "yes" : "no") &&
       ipopt.SetIntegerValue("max_iter", options.max_iterations) &&
       ipopt.SetNumericValue("tol", options.tolerance) &&
       ipopt.SetNumericValue("constr_viol_tol", options.constraint_tolerance) &&
@@ -400,6 +416,7 @@ std::optional<std::string> validateTranscriptionOptions(const DirectTranscriptio
     return "final-time bounds must satisfy 0 < min_final_time < max_final_time";
   }
   if (o.max_iterations < 1) return "max_iterations must be >= 1";
+  if (!(o.map_margin >= 0.0)) return "map_margin must be >= 0";
   if (o.time_limit_s && !(*o.time_limit_s >= 0.0)) return "time_limit_s must be >= 0";
   if (!(o.tolerance > 0.0) || !(o.constraint_tolerance > 0.0)) return "tolerances must be > 0";
   if (o.scheme == TranscriptionScheme::kMultipleShooting &&
@@ -490,6 +507,8 @@ TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingMod
     layout.scheme = options.scheme;
     layout.shooting_controls = options.shooting_controls;
     layout.mesh = uniformMesh(options.intervals);
+    // A twentieth of a cell: see TranscriptionLayout::hessian_position_step.
+    layout.hessian_position_step = 0.05 * vehicle.surface().map().geometry().cell;
     TranscriptionGuess current = guess;
     int total_iterations = 0;
     for (int round = 0;; ++round) {

@@ -44,6 +44,28 @@ struct TranscriptionNlp::Shooting {
                    layout.shooting_relative_tolerance, layout.shooting_absolute_tolerance) {}
 };
 
+template <typename Visit>
+void TranscriptionNlp::forEachEntry(TermPattern pattern, Visit&& visit) {
+  for (int i = 0; i < kStateSize; ++i) {
+    switch (pattern) {
+      case TermPattern::kDense:
+        for (int j = 0; j < kPointSize; ++j) visit(i, j);
+        break;
+      case TermPattern::kDynamics:
+        if (i < 3) {
+          for (int j = 0; j < kStateSize; ++j) visit(i, j);
+        } else {
+          visit(i, i);
+          visit(i, i + kControlSize);  // v' for v, omega' for omega
+        }
+        break;
+      case TermPattern::kIdentity:
+        visit(i, i);
+        break;
+    }
+  }
+}
+
 TranscriptionNlp::TranscriptionNlp(const TranscriptionModel& model, TranscriptionLayout layout)
     : model_(&model), layout_(std::move(layout)) {
   const std::vector<double>& mesh = layout_.mesh;
@@ -119,6 +141,13 @@ void TranscriptionNlp::buildStructure() {
       blocks_.push_back({{{k, -1.0, d / 2.0}, {k + 1, 1.0, d / 2.0}}, 0, 0});
     }
   }
+  for (DefectBlock& block : blocks_) {
+    for (Term& term : block.terms) {
+      term.pattern = layout_.scheme == TranscriptionScheme::kMultipleShooting ? TermPattern::kDense
+                     : term.beta == 0.0 ? TermPattern::kIdentity
+                                        : TermPattern::kDynamics;
+    }
+  }
   const int tf = finalTimeIndex();
   jac_rows_.clear();
   jac_cols_.clear();
@@ -127,12 +156,10 @@ void TranscriptionNlp::buildStructure() {
     block.row = row;
     block.jac_start = static_cast<int>(jac_rows_.size());
     for (const Term& term : block.terms) {
-      for (int i = 0; i < kStateSize; ++i) {
-        for (int j = 0; j < kPointSize; ++j) {
-          jac_rows_.push_back(row + i);
-          jac_cols_.push_back(kPointSize * term.point + j);
-        }
-      }
+      forEachEntry(term.pattern, [&](int i, int j) {
+        jac_rows_.push_back(row + i);
+        jac_cols_.push_back(kPointSize * term.point + j);
+      });
     }
     for (int i = 0; i < kStateSize; ++i) {
       jac_rows_.push_back(row + i);
@@ -203,9 +230,7 @@ bool TranscriptionNlp::evaluateCollocation(const Eigen::Map<const Eigen::VectorX
       d_tf -= term.beta * e.rate;
       Eigen::Matrix<double, kStateSize, kPointSize> jac = -tf * term.beta * e.rate_jacobian;
       jac.leftCols<kStateSize>().diagonal().array() += term.alpha;
-      for (int i = 0; i < kStateSize; ++i) {
-        for (int j = 0; j < kPointSize; ++j) jac_values_(entry++) = jac(i, j);
-      }
+      forEachEntry(term.pattern, [&](int i, int j) { jac_values_(entry++) = jac(i, j); });
     }
     for (int i = 0; i < kStateSize; ++i) jac_values_(entry++) = d_tf(i);
     constraints_.segment<kStateSize>(block.row) = defect;
@@ -333,7 +358,9 @@ bool TranscriptionNlp::hessian(const double* x_data, double sigma, const double*
     const double c = sigma * tf * weights_[ps];
     Eigen::Matrix<double, kPointSize, kPointSize> h;
     for (int i = 0; i < kPointSize; ++i) {
-      const double step = kHessianStep * (1.0 + std::abs(w(i)));
+      const double step = i < 2 && layout_.hessian_position_step > 0.0
+                              ? layout_.hessian_position_step
+                              : kHessianStep * (1.0 + std::abs(w(i)));
       PointVector plus = w, minus = w, g_plus, g_minus;
       plus(i) += step;
       minus(i) -= step;

@@ -201,10 +201,11 @@ Solved solveAndVerify(const models::TerrainFollowingModel& vehicle,
   EXPECT_LT(out.verified.terminal_error.head<2>().norm(), goal_tolerance);
   EXPECT_LT(std::abs(out.verified.terminal_error.z()), goal_tolerance);
   EXPECT_LT(out.verified.terminal_speed_error.cwiseAbs().maxCoeff(), 1e-6);
-  std::printf("  %s: t_f %.6f (re-simulated %.6f), cost %.6f, %d iterations, %.1f ms, worst %s %.3g\n",
-              out.solution.result.method.c_str(), out.solution.final_time, out.verified.final_time,
-              out.verified.cost, out.solution.result.iterations, out.solution.result.solve_time_ms,
-              out.verified.violation.limit.c_str(), out.verified.violation.amount);
+  std::printf(
+      "  %s: t_f %.6f (re-simulated %.6f), cost %.6f, %d iterations, %.1f ms, worst %s %.3g\n",
+      out.solution.result.method.c_str(), out.solution.final_time, out.verified.final_time,
+      out.verified.cost, out.solution.result.iterations, out.solution.result.solve_time_ms,
+      out.verified.violation.limit.c_str(), out.verified.violation.amount);
   return out;
 }
 
@@ -385,24 +386,70 @@ TEST(DirectTranscription, WarmStartsFromAnXyPathAndRefinesTheMesh) {
   EXPECT_LT(s.verified.violation.amount, 0.25) << s.verified.violation.limit;
 }
 
+TEST(DirectTranscription, KeepsItsClearanceFromLethalCells) {
+  // Flat 20 m x 20 m with a lethal block across the straight line from (3, 10) to (17, 10).
+  terrain::ElevationMap map = fixtures::flatMap();
+  terrain::GridLayer& lethal = map.addLayer("lethal");
+  for (int r = 34; r < 46; ++r) {
+    for (int c = 36; c < 44; ++c) lethal(r, c) = 1.0f;  // x 9..11 m, y 8.5..11.5 m
+  }
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::PointAttitudeModel vehicle(surface);
+  const terrain::ClearanceMap clearance(map);
+  BoundaryValueProblem problem = restToRest(3.0, 10.0, 17.0, 10.0, 0.0);
+  problem.limits.v_max = 1.0;
+  problem.limits.a_max = 0.5;
+  problem.limits.kappa_max = 1.0;
+  // A candidate passing north of the block.
+  const std::optional<TranscriptionGuess> guess =
+      guessFromPath({{3, 10}, {8, 12.5}, {12, 12.5}, {17, 10}}, problem);
+  ASSERT_TRUE(guess.has_value());
+  DirectTranscriptionOptions options;
+  options.intervals = 60;
+  options.model.control_effort_weight = 1e-3;
+  options.model.clearance = {&clearance, 0.5};
+  const TranscriptionSolution s = solveDirectTranscription(vehicle, problem, *guess, options);
+  ASSERT_EQ(s.result.status, SolveStatus::kConverged) << s.result.reason;
+  const TranscriptionModel model(vehicle, problem, options.model);
+  const VerifiedTrajectory verified = verifyTranscriptionSolution(model, s, &map);
+  ASSERT_TRUE(verified.ok) << verified.message;
+  EXPECT_NE(verified.violation.limit, "lethal");
+  double closest = 1e9, north = -1e9;
+  for (const PointVector& w : s.points) {
+    closest = std::min(closest, clearance.at(w.head<2>())->distance);
+    north = std::max(north, w(1));
+  }
+  EXPECT_GE(closest, 0.5 - 1e-6);  // at the points
+  EXPECT_LT(closest, 0.51);        // and tight: the detour is no wider than needed
+  EXPECT_GT(north, 11.5);          // still north of the block (its candidate's side)
+  for (const models::TrajectorySample& sample : verified.trajectory.samples) {
+    EXPECT_GT(clearance.at({sample.x, sample.y})->distance, 0.4);  // between the points too
+  }
+}
+
 TEST(DirectTranscription, FailuresAreStatusesWithIpoptsReason) {
   const terrain::ElevationMap map = rampMap(std::tan(-0.1));
   const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
   const models::PointAttitudeModel vehicle(surface);
   BoundaryValueProblem problem = restToRest(3.0, 5.0, 11.0, 5.0, 0.0);
   const TranscriptionGuess guess = straightGuess(problem);
-  // A pitch limit below the slope: even standing still breaks it.
+  // A pitch limit below the slope: downhill the platform stays within it only while
+  // accelerating at about g sin(slope), so the Segway cannot stop at the goal.
   DirectTranscriptionOptions segway;
   segway.intervals = 20;
   segway.max_iterations = 100;
   segway.model.segway = SegwayConstraints{models::defaultSegwayLookups()};
   BoundaryValueProblem steep = problem;
   steep.limits.pitch_max = 0.05;
+  steep.limits.roll_max = 0.05;  // nor can it turn round and brake facing uphill
   const TranscriptionSolution infeasible = solveDirectTranscription(vehicle, steep, guess, segway);
-  // Ipopt with L-BFGS (the Segway's default) may run out of iterations before it proves it.
+  // Infeasible or diverged (the mapping), or out of iterations before Ipopt proves it
+  // (L-BFGS, the Segway's default); never converged, always with a reason.
   EXPECT_TRUE(infeasible.result.status == SolveStatus::kInfeasible ||
+              infeasible.result.status == SolveStatus::kDiverged ||
               infeasible.result.status == SolveStatus::kMaxIterations)
-      << infeasible.result.reason;
+      << solveStatusName(infeasible.result.status) << ": " << infeasible.result.reason;
+  EXPECT_FALSE(infeasible.result.reason.empty());
   EXPECT_FALSE(infeasible.ipopt_status.empty());
   // Inconsistent bounds.
   DirectTranscriptionOptions bounds;

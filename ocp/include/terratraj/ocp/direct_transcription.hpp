@@ -35,7 +35,7 @@ enum class TranscriptionScaling {
 /// Re-solving with more intervals where the integration error between nodes is large.
 struct MeshRefinementOptions {
   int max_rounds = 0;        ///< 0: no refinement
-  double tolerance = 1e-3;   ///< local error of an interval [m and rad] (CVODES from its node)
+  double tolerance = 1e-3;   ///< local error of an interval [m and rad] (RK4 from its node)
   int max_intervals = 1000;  ///< never refine beyond this many intervals
 };
 
@@ -48,11 +48,14 @@ struct DirectTranscriptionOptions {
   /// piecewise-bilinear look-ups have no useful second derivatives).
   std::optional<TranscriptionHessian> hessian;
   TranscriptionScaling scaling = TranscriptionScaling::kUser;
-  double min_final_time = 1e-2;        ///< lower bound of t_f [s], > 0
-  double max_final_time = 1e4;         ///< upper bound of t_f [s]
-  int max_iterations = 1000;           ///< Ipopt iterations per solve, >= 1
+  double min_final_time = 1e-2;  ///< lower bound of t_f [s], > 0
+  double max_final_time = 1e4;   ///< upper bound of t_f [s]
+  int max_iterations = 1000;     ///< Ipopt iterations per solve, >= 1
+  /// x and y are bounded to the map's extent inset by this much [m], >= 0 (the vehicle's
+  /// footprint must stay on the map for its attitude to exist).
+  double map_margin = 0.5;
   std::optional<double> time_limit_s;  ///< wall clock for the whole solve [s]
-  double tolerance = 1e-8;             ///< Ipopt's tol (scaled KKT error)
+  double tolerance = 1e-6;             ///< Ipopt's tol (scaled KKT error)
   double constraint_tolerance = 1e-8;  ///< Ipopt's constr_viol_tol (unscaled) [state units]
   MeshRefinementOptions refinement;
   int print_level = 0;  ///< Ipopt's print_level (0: silent; 5: its iteration log on stdout)
@@ -110,9 +113,9 @@ TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingMod
                                                const TranscriptionGuess& guess,
                                                const DirectTranscriptionOptions& options = {});
 
-/// Largest local integration error over each interval of `solution` (CVODES from each node's
+/// Largest local integration error over each interval of `solution` (from each node's
 /// state with the interpolated controls, compared with the next node) [m, rad]; one entry per
-/// interval; std::nullopt when an interval cannot be integrated.
+/// interval; std::nullopt when an interval cannot be integrated (RK4, 32 sub-steps).
 std::optional<std::vector<double>> intervalErrors(const TranscriptionModel& model,
                                                   const TranscriptionSolution& solution);
 

@@ -48,6 +48,10 @@ struct TranscriptionLayout {
   std::vector<double> mesh;                    ///< node times tau_0 = 0 < ... < tau_N = 1
   double shooting_relative_tolerance = 1e-8;   ///< CVODES (shooting only)
   double shooting_absolute_tolerance = 1e-10;  ///< CVODES (shooting only)
+  /// Step of the Hessian's differences in x and y [m]; 0: 1e-5 (1 + |x|). A step of a fraction
+  /// of the cell averages the jumps of the terrain's second derivatives at cell boundaries
+  /// (bicubic interpolation is only C1), which a tiny step turns into spikes.
+  double hessian_position_step = 0.0;
 };
 
 /// A uniform mesh of `intervals` (>= 1) intervals.
@@ -121,11 +125,21 @@ class TranscriptionNlp {
   const std::string& message() const { return message_; }
 
  private:
+  // Which entries of a defect term's 5 x 7 block can be non-zero.
+  enum class TermPattern {
+    kDense,     // shooting: d Phi / d (z, u) is dense
+    kDynamics,  // collocation: (x, y, heading)' depend on z only; v' on v and v', omega' likewise
+    kIdentity,  // a term with beta = 0: alpha I on z
+  };
   struct Term {  // one point's part in a defect block: alpha z_p - t_f beta f_p
     int point;
     double alpha;
     double beta;
+    TermPattern pattern = TermPattern::kDense;
   };
+  // Calls visit(i, j) for each structural entry of a term's block, in a fixed order.
+  template <typename Visit>
+  static void forEachEntry(TermPattern pattern, Visit&& visit);
   struct DefectBlock {
     std::vector<Term> terms;
     int row;        // first of 5 rows
