@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "terratraj/apps/lut_commands.hpp"
+#include "terratraj/apps/plan_command.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/solve_command.hpp"
 #include "terratraj/apps/terrain_commands.hpp"
@@ -129,13 +130,30 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   CLI::App* solve_command = app.add_subcommand(
       "solve",
       "One boundary-value problem: from the problem's start to its goal, a trajectory locally "
-      "optimal for its cost (newton, newton_fd, ipopt, ceres). Exit 0 converged, 1 not solved "
+      "optimal for its cost (newton, newton_fd, ipopt, ceres, shooting, collocation). Exit 0 "
+      "converged, 1 not solved "
       "(the report says why), 2 bad input.");
   solve_command->add_option("PROBLEM", solve.problem, "problem YAML")->required();
   solve_command->add_option("--method", solve.method, "overrides solver.method")
       ->check(CLI::IsMember(solverMethodNames()));
   solve_command->add_option("--out", solve.out, "write the re-simulated trajectory (CSV)");
+  solve_command->add_option("--guess", solve.guess,
+                            "shooting / collocation: initial guess from a trajectory or x,y CSV");
   solve_command->add_flag("--json", json_flag, "print the report as one JSON object");
+
+  PlanOptions plan;
+  CLI::App* plan_command = app.add_subcommand(
+      "plan",
+      "Global planning from the problem's start to its goal region with the kinodynamic PRM "
+      "(anytime: it improves the trajectory until the time limit). Writes "
+      "<out-dir>/solution_0.csv. Exit 0 solved, 1 no solution in the time limit, 2 bad input.");
+  plan_command->add_option("PROBLEM", plan.problem, "problem YAML")->required();
+  plan_command->add_option("--planner", plan.planner, "overrides planner.kind (prm)")
+      ->check(CLI::IsMember(plannerKindNames()));
+  plan_command->add_option("--time-limit", plan.time_limit_s, "overrides planner.time_limit_s [s]");
+  plan_command->add_option("--seed", plan.seed, "overrides planner.seed");
+  plan_command->add_option("--out-dir", plan.out_dir, "output folder")->capture_default_str();
+  plan_command->add_flag("--json", json_flag, "print the report as one JSON object");
 
   CLI::App* lut_command = app.add_subcommand(
       "lut", "Kinodynamic look-up tables (speed limits by pitch, roll x curvature).");
@@ -219,6 +237,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     }
     if (*check_command) return runCheck(check, context);
     if (*solve_command) return runSolve(solve, context);
+    if (*plan_command) return runPlan(plan, context);
     if (*lut_build_command) return runLutBuild(lut_build, context);
     if (*lut_check_command) return runLutCheck(lut_check, context);
     if (*lut_physics_command) return runLutPhysics(lut_physics, context);

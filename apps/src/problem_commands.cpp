@@ -127,7 +127,10 @@ nlohmann::json problemJson(const ProblemSpec& problem) {
         {"time_limit_s", problem.planner.time_limit_s},
         {"seed", problem.planner.seed},
         {"homotopy_classes", problem.planner.homotopy_classes},
-        {"frame_radius_m", problem.planner.frame_radius_m}}},
+        {"frame_radius_m", problem.planner.frame_radius_m},
+        {"goal_position_tolerance_m", problem.planner.goal_position_tolerance_m},
+        {"goal_heading_tolerance_rad", problem.planner.goal_heading_tolerance},
+        {"goal_speed_tolerance", problem.planner.goal_speed_tolerance}}},
   };
 }
 

@@ -655,9 +655,11 @@ void parseTolerance(const Context& ctx, const Field& field, SolverSpec& solver) 
 
 // `solver`.
 SolverSpec parseSolver(const Context& ctx, const Field& field) {
-  const MapReader map(ctx, field,
-                      {"method", "intervals", "max_iterations", "tolerance", "time_limit_s",
-                       "yaw_rate_order", "speed_order"});
+  const MapReader map(
+      ctx, field,
+      {"method", "intervals", "max_iterations", "tolerance", "time_limit_s", "yaw_rate_order",
+       "speed_order", "scheme", "shooting_controls", "hessian", "control_effort",
+       "mesh_refinement_rounds", "mesh_refinement_tolerance", "min_clearance_m"});
   SolverSpec solver;
   if (const std::optional<Field> method = map.find("method")) {
     solver.method = readEnum<SolverMethod>(ctx, *method, parseSolverMethod, solverMethodNames());
@@ -670,13 +672,36 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
     parseTolerance(ctx, *tolerance, solver);
   }
   solver.time_limit_s = map.optionalNumber("time_limit_s", Range::nonNegative());
+  const auto choice = [&](const char* key, const std::vector<std::string>& names,
+                          std::string& value) {
+    if (const std::optional<Field> found = map.find(key)) {
+      value = readEnum<std::string>(
+          ctx, *found,
+          [&](const std::string& text) {
+            return std::find(names.begin(), names.end(), text) != names.end()
+                       ? std::optional<std::string>(text)
+                       : std::nullopt;
+          },
+          names);
+    }
+  };
+  choice("scheme", {"hermite_simpson", "trapezoidal"}, solver.scheme);
+  choice("shooting_controls", {"linear", "constant"}, solver.shooting_controls);
+  choice("hessian", {"auto", "exact", "limited_memory"}, solver.hessian);
+  map.readNumberInto("control_effort", Range::nonNegative(), solver.control_effort);
+  map.readIntInto("mesh_refinement_rounds", 0, 10, solver.mesh_refinement_rounds);
+  map.readNumberInto("mesh_refinement_tolerance", Range::positive(),
+                     solver.mesh_refinement_tolerance);
+  solver.min_clearance_m = map.optionalNumber("min_clearance_m", Range::nonNegative());
   return solver;
 }
 
 // `planner`.
 PlannerSpec parsePlanner(const Context& ctx, const Field& field) {
   const MapReader map(ctx, field,
-                      {"kind", "time_limit_s", "seed", "homotopy_classes", "frame_radius_m"});
+                      {"kind", "time_limit_s", "seed", "homotopy_classes", "frame_radius_m",
+                       "goal_position_tolerance_m", "goal_heading_tolerance",
+                       "goal_heading_tolerance_deg", "goal_speed_tolerance"});
   PlannerSpec planner;
   if (const std::optional<Field> kind = map.find("kind")) {
     planner.kind = readEnum<PlannerKind>(ctx, *kind, parsePlannerKind, plannerKindNames());
@@ -686,6 +711,11 @@ PlannerSpec parsePlanner(const Context& ctx, const Field& field) {
   map.readIntInto("homotopy_classes", kMinHomotopyClasses, kMaxHomotopyClasses,
                   planner.homotopy_classes);
   map.readNumberInto("frame_radius_m", Range::positive(), planner.frame_radius_m);
+  map.readNumberInto("goal_position_tolerance_m", Range::positive(),
+                     planner.goal_position_tolerance_m);
+  map.readAngleInto("goal_heading_tolerance", Range::openInterval(0.0, 360.0, "deg"),
+                    planner.goal_heading_tolerance);
+  map.readNumberInto("goal_speed_tolerance", Range::positive(), planner.goal_speed_tolerance);
   return planner;
 }
 

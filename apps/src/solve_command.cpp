@@ -8,8 +8,10 @@
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/vehicle_factory.hpp"
+#include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/models/velocity_table.hpp"
+#include "terratraj/terrain/clearance_map.hpp"
 #include "terratraj/terrain/input_error.hpp"
 #include "terratraj/terrain/terrain_source.hpp"
 
@@ -56,19 +58,113 @@ ocp::BoundaryValueProblem boundaryValueProblem(const ProblemSpec& problem) {
 
 ocp::BoundaryValueOptions boundaryValueOptions(const ProblemSpec& problem) {
   ocp::BoundaryValueOptions options;
-  const std::optional<ocp::BoundaryValueMethod> method = parametricMethod(problem.solver.method);
-  if (!method) {
-    throw InputError(problem.source_file.string() +
-                     ": solver.method: " + solverMethodName(problem.solver.method) +
-                     " is a direct-transcription method, which `solve` does not provide yet; "
-                     "use newton, newton_fd, ipopt or ceres");
-  }
-  options.method = *method;
+  // Direct transcription starts from the parametric solution: newton's settings then.
+  options.method =
+      parametricMethod(problem.solver.method).value_or(ocp::BoundaryValueMethod::kNewton);
   options.criteria = {problem.solver.tolerance_position_m, problem.solver.tolerance_heading_rad,
                       problem.solver.tolerance_lagrangian_gradient};
   options.max_iterations = problem.solver.max_iterations;
   options.time_limit_s = problem.solver.time_limit_s;
   return options;
+}
+
+bool isTranscriptionMethod(SolverMethod method) {
+  return method == SolverMethod::kShooting || method == SolverMethod::kCollocation;
+}
+
+ocp::DirectTranscriptionOptions transcriptionOptions(const ProblemSpec& problem) {
+  const SolverSpec& solver = problem.solver;
+  ocp::DirectTranscriptionOptions options;
+  options.scheme = solver.method == SolverMethod::kShooting
+                       ? ocp::TranscriptionScheme::kMultipleShooting
+                   : solver.scheme == "trapezoidal" ? ocp::TranscriptionScheme::kTrapezoidal
+                                                    : ocp::TranscriptionScheme::kHermiteSimpson;
+  options.shooting_controls = solver.shooting_controls == "constant"
+                                  ? ocp::ShootingControls::kPiecewiseConstant
+                                  : ocp::ShootingControls::kPiecewiseLinear;
+  if (solver.hessian == "exact") options.hessian = ocp::TranscriptionHessian::kExact;
+  if (solver.hessian == "limited_memory") {
+    options.hessian = ocp::TranscriptionHessian::kLimitedMemory;
+  }
+  options.intervals = solver.intervals;
+  options.max_iterations = solver.max_iterations;
+  options.time_limit_s = solver.time_limit_s;
+  options.refinement.max_rounds = solver.mesh_refinement_rounds;
+  options.refinement.tolerance = solver.mesh_refinement_tolerance;
+  options.model.control_effort_weight = solver.control_effort;
+  if (problem.vehicle.model == VehicleModelKind::kSegwayRmp) {
+    options.model.segway = ocp::SegwayConstraints{models::defaultSegwayLookups()};
+  }
+  if (std::optional<std::string> why = ocp::validateTranscriptionOptions(options)) {
+    throw InputError(problem.source_file.string() + ": solver: " + *why);
+  }
+  return options;
+}
+
+nlohmann::json transcriptionReportJson(const ocp::TranscriptionSolution& solution,
+                                       const ocp::VerifiedTrajectory& v,
+                                       const ocp::DirectTranscriptionOptions& options,
+                                       const std::string& guess_source) {
+  const ocp::SolveResult& s = solution.result;
+  nlohmann::json history = nlohmann::json::array();
+  for (const ocp::IterationRecord& r : s.history) {
+    history.push_back({{"iteration", r.iteration},
+                       {"terminal_error", number(r.terminal_error)},
+                       {"cost", number(r.cost)},
+                       {"lagrangian_gradient", number(r.lagrangian_gradient)},
+                       {"step", number(r.step)}});
+  }
+  nlohmann::json active = nlohmann::json::array();
+  for (const ocp::ActiveConstraint& a : solution.active) {
+    active.push_back({{"limit", a.name},
+                      {"t", a.t},
+                      {"point", a.point},
+                      {"value", a.value},
+                      {"multiplier", a.multiplier}});
+  }
+  nlohmann::json refinement = nlohmann::json::array();
+  for (const ocp::RefinementRound& r : solution.refinement) {
+    refinement.push_back({{"intervals", r.intervals},
+                          {"max_interval_error", r.max_interval_error},
+                          {"iterations", r.iterations}});
+  }
+  const bool shooting = options.scheme == ocp::TranscriptionScheme::kMultipleShooting;
+  return {
+      {"status", ocp::solveStatusName(s.status)},
+      {"reason", s.reason},
+      {"method", shooting ? "shooting" : "collocation"},
+      {"scheme", ocp::transcriptionSchemeName(options.scheme)},
+      {"shooting_controls", options.shooting_controls == ocp::ShootingControls::kPiecewiseConstant
+                                ? "constant"
+                                : "linear"},
+      {"intervals", static_cast<int>(solution.mesh.size()) - 1},
+      {"ipopt_status", solution.ipopt_status},
+      {"initial_guess", guess_source},
+      {"iterations", s.iterations},
+      {"max_iterations", options.max_iterations},
+      {"time_limit_s",
+       options.time_limit_s ? nlohmann::json(*options.time_limit_s) : nlohmann::json(nullptr)},
+      {"solve_time_ms", s.solve_time_ms},
+      {"final_time_s", v.ok ? number(v.final_time) : nullptr},
+      {"cost", v.ok ? number(v.cost) : nullptr},
+      {"solver_cost", number(s.cost)},
+      {"length_m", v.ok ? number(v.length) : nullptr},
+      {"terminal_error",
+       {{"position_m", v.ok ? number(v.terminal_error.head<2>().norm()) : nullptr},
+        {"heading_rad", v.ok ? number(std::abs(v.terminal_error.z())) : nullptr}}},
+      {"max_abs_pitch_rad", number(v.max_abs_pitch)},
+      {"max_abs_roll_rad", number(v.max_abs_roll)},
+      {"max_speed", number(v.max_speed)},
+      {"constraint_violation", number(v.violation.amount)},
+      {"violated_limit",
+       v.violation.limit.empty() ? nlohmann::json(nullptr) : nlohmann::json(v.violation.limit)},
+      {"max_defect", number(solution.max_defect)},
+      {"slope_dwell_rad2_s", number(v.slope_dwell)},
+      {"verified", v.ok},
+      {"active_constraints", active},
+      {"mesh_refinement", refinement},
+      {"history", history},
+  };
 }
 
 nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,
@@ -143,6 +239,96 @@ nlohmann::json solveDemoProblem(const terrain::ElevationMap& map, const std::fil
   return report;
 }
 
+namespace {
+
+// `solve` with shooting or collocation: the initial guess from --guess, else the parametric
+// solution (newton), else a straight line; then the transcription, its re-simulation and the
+// report. Converged only when the re-simulation reaches the goal within the tolerances.
+int runTranscription(const SolveOptions& options, const ProblemSpec& problem,
+                     const terrain::ElevationMap& map, const models::TerrainFollowingModel& vehicle,
+                     const ocp::BoundaryValueProblem& bvp,
+                     const ocp::BoundaryValueOptions& parametric_options,
+                     ocp::DirectTranscriptionOptions transcription_options,
+                     CommandContext& context) {
+  std::optional<ocp::TranscriptionGuess> guess;
+  std::string source;
+  if (options.guess) {
+    const models::Trajectory candidate = models::readTrajectoryCsv(*options.guess);
+    std::string why;
+    guess = ocp::guessFromCandidate(candidate, bvp, &why);
+    if (!guess) throw InputError(options.guess->string() + ": " + why);
+    source = options.guess->string();
+  } else {
+    context.log->info("initial guess: the parametric solution (newton)");
+    const ocp::BoundaryValueSolution parametric =
+        ocp::solveBoundaryValue(vehicle, bvp, parametric_options, &map);
+    if (parametric.verified.ok) guess = ocp::guessFromTrajectory(parametric.verified.trajectory);
+    source = "newton (" + std::string(ocp::solveStatusName(parametric.status)) + ")";
+    if (!guess) {
+      guess = ocp::guessFromPath({{bvp.start.x, bvp.start.y}, {bvp.goal.x, bvp.goal.y}}, bvp);
+      source = "straight line";
+    }
+    if (!guess) throw InputError(problem.source_file.string() + ": start and goal coincide");
+  }
+  std::optional<terrain::ClearanceMap> clearance;
+  if (problem.solver.min_clearance_m) {
+    clearance.emplace(map);
+    transcription_options.model.clearance = {&*clearance, *problem.solver.min_clearance_m};
+  }
+  context.log->info("solving with {} ({} intervals) on the {} model",
+                    ocp::transcriptionSchemeName(transcription_options.scheme),
+                    transcription_options.intervals, vehicle.name());
+  ocp::TranscriptionSolution solution =
+      ocp::solveDirectTranscription(vehicle, bvp, *guess, transcription_options);
+  const ocp::TranscriptionModel model(vehicle, bvp, transcription_options.model);
+  const ocp::VerifiedTrajectory verified =
+      solution.points.empty() ? ocp::VerifiedTrajectory{}
+                              : ocp::verifyTranscriptionSolution(model, solution, &map);
+  ocp::SolveResult& result = solution.result;
+  if (result.status == ocp::SolveStatus::kConverged) {
+    const double position = verified.terminal_error.head<2>().norm();
+    const double heading = std::abs(verified.terminal_error.z());
+    if (!verified.ok) {
+      result.status = ocp::SolveStatus::kDiverged;
+      result.reason = "the re-simulation failed: " + verified.message;
+    } else if (position > problem.solver.tolerance_position_m ||
+               heading > problem.solver.tolerance_heading_rad) {
+      result.status = ocp::SolveStatus::kDiverged;
+      result.reason = "Ipopt converged but the re-simulated trajectory ends " +
+                      std::to_string(position) + " m, " + std::to_string(heading) +
+                      " rad from the goal (beyond solver.tolerance): raise solver.intervals "
+                      "or solver.mesh_refinement_rounds";
+    }
+  }
+  if (options.out && verified.ok) models::writeTrajectoryCsv(verified.trajectory, *options.out);
+  const nlohmann::json report =
+      transcriptionReportJson(solution, verified, transcription_options, source);
+  if (context.json) {
+    context.out << report.dump(2) << '\n';
+  } else {
+    context.out << ocp::solveStatusName(result.status) << " ("
+                << report["method"].get<std::string>() << " " << report["scheme"].get<std::string>()
+                << ", " << result.iterations << " iterations, " << result.solve_time_ms
+                << " ms, Ipopt " << solution.ipopt_status << ")";
+    if (!result.reason.empty()) context.out << ": " << result.reason;
+    context.out << '\n';
+    if (verified.ok) {
+      context.out << "  final time  " << verified.final_time << " s, cost " << verified.cost
+                  << ", length " << verified.length << " m\n"
+                  << "  terminal    " << verified.terminal_error.head<2>().norm() << " m, "
+                  << std::abs(verified.terminal_error.z()) << " rad (re-simulated)\n"
+                  << "  violation   " << verified.violation.amount
+                  << (verified.violation.limit.empty() ? "" : " (" + verified.violation.limit + ")")
+                  << '\n';
+    }
+    if (options.out && verified.ok)
+      context.out << "  trajectory  " << options.out->string() << '\n';
+  }
+  return result.status == ocp::SolveStatus::kConverged ? kExitSuccess : kExitNotSolved;
+}
+
+}  // namespace
+
 int runSolve(const SolveOptions& options, CommandContext& context) {
   ProblemSpec problem = loadProblem(options.problem);
   if (options.method) {
@@ -151,6 +337,12 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
     problem.solver.method = *method;
   }
   const ocp::BoundaryValueOptions solve_options = boundaryValueOptions(problem);
+  const bool transcription = isTranscriptionMethod(problem.solver.method);
+  const ocp::DirectTranscriptionOptions transcription_options =
+      transcription ? transcriptionOptions(problem) : ocp::DirectTranscriptionOptions{};
+  if (options.guess && !transcription) {
+    throw InputError("--guess: only shooting and collocation take an initial guess");
+  }
   context.log->info("{}: loading the terrain", options.problem.string());
   const terrain::ElevationMap map = terrain::loadTerrain(problem.terrain);
   resolvePosesOnTerrain(problem, map);
@@ -169,6 +361,10 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
   if (problem.vehicle.tables.roll_curvature) {
     roll_table = models::readRollCurvatureTable(*problem.vehicle.tables.roll_curvature);
     bvp.tables.roll_curvature = &*roll_table;
+  }
+  if (transcription) {
+    return runTranscription(options, problem, map, *vehicle, bvp, solve_options,
+                            transcription_options, context);
   }
   context.log->info("solving with {} on the {} model",
                     ocp::boundaryValueMethodName(solve_options.method), vehicle->name());

@@ -1,5 +1,6 @@
 #include "terratraj/apps/terrain_commands.hpp"
 
+#include "terratraj/apps/plan_command.hpp"
 #include "terratraj/apps/solve_command.hpp"
 
 #include <cmath>
@@ -14,6 +15,9 @@
 
 namespace terratraj::apps {
 namespace {
+
+// Wall-clock budget of the demo's PRM plan [s].
+constexpr double kDemoPlanTimeLimitS = 0.5;
 
 constexpr double kRadToDeg = 57.29577951308232;
 
@@ -140,6 +144,8 @@ int runDemo(const DemoOptions& options, CommandContext& context) {
   };
   const std::filesystem::path solve_file = options.out_dir / "solve.csv";
   summary["solve"] = solveDemoProblem(map, solve_file, context);
+  const std::filesystem::path plan_file = options.out_dir / "plan.csv";
+  summary["plan"] = planDemoProblem(map, plan_file, kDemoPlanTimeLimitS, context);
   writeJsonFile(summary, summary_file);
   context.log->info("demo: wrote {}", summary_file.string());
   if (context.json) {
@@ -157,8 +163,18 @@ int runDemo(const DemoOptions& options, CommandContext& context) {
       context.out << "; t_f " << solve["final_time_s"].get<double>() << " s, terminal error "
                   << solve["terminal_error"]["position_m"].get<double>() << " m";
     }
+    const nlohmann::json& plan = summary["plan"];
+    context.out << "\nplan (prm, point vehicle, " << kDemoPlanTimeLimitS
+                << " s): " << plan["status"].get<std::string>();
+    if (plan["best_cost_s"].is_number()) {
+      context.out << "; first solution " << plan["first_solution_ms"].get<double>()
+                  << " ms, best cost " << plan["best_cost_s"].get<double>() << " s, "
+                  << plan["nodes"] << " nodes";
+    }
     context.out << "\n  files      " << tif.string() << ", " << summary_file.string() << ", "
-                << solve_file.string() << '\n';
+                << solve_file.string();
+    if (plan["best_cost_s"].is_number()) context.out << ", " << plan_file.string();
+    context.out << '\n';
   }
   return kExitSuccess;
 }

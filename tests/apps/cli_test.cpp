@@ -347,14 +347,54 @@ TEST_F(CliTest, SolveWritesTheReportAndTheTrajectory) {
   const CliResult bad_order = run({"solve", path("order.yaml")});
   EXPECT_EQ(bad_order.status, kExitBadInput);
   EXPECT_THAT(bad_order.err, HasSubstr("solver.yaw_rate_order"));
-  const CliResult transcription =
-      run({"solve", path("problem.yaml"), "--method", "collocation", "--json"});
-  EXPECT_EQ(transcription.status, kExitBadInput);
-  EXPECT_EQ(nlohmann::json::parse(transcription.out)["status"], "error");
+  write("scheme.yaml", problem + "solver: {method: collocation, scheme: euler}\n");
+  const CliResult bad_scheme = run({"solve", path("scheme.yaml"), "--json"});
+  EXPECT_EQ(bad_scheme.status, kExitBadInput);
+  EXPECT_THAT(bad_scheme.err, HasSubstr("solver.scheme"));
+  EXPECT_EQ(nlohmann::json::parse(bad_scheme.out)["status"], "error");
+  EXPECT_EQ(run({"solve", path("problem.yaml"), "--guess", path("trajectory.csv")}).status,
+            kExitBadInput);  // --guess is for shooting / collocation
   write("offmap.yaml",
         "terrain:\n  generate: {kind: hill, rows: 64, cols: 64, cell: 0.25}\n"
         "start: {x: 3.0, y: 6.0, v: 0.5}\ngoal: {x: 30.0, y: 6.0, v: 0.5}\n");
   EXPECT_EQ(run({"solve", path("offmap.yaml")}).status, kExitBadInput);
+}
+
+// `solve` by direct transcription: the contract's report plus Ipopt's status and the active
+// constraints; warm start from the parametric solution or from an x,y CSV.
+TEST_F(CliTest, SolveByCollocationAndShooting) {
+  write("problem.yaml",
+        "terrain:\n  generate: {kind: hill, rows: 64, cols: 64, cell: 0.25, seed: 1}\n"
+        "vehicle:\n  model: point\n  limits: {v_max: 1.0, a_max: 0.5, kappa_max: 3.0, "
+        "sigma_max: 5.0}\n"
+        "start: {x: 3.0, y: 6.0, heading_deg: 0, v: 0.0}\n"
+        "goal:  {x: 9.0, y: 8.0, heading_deg: 30, v: 0.0}\n"
+        "solver: {method: collocation, intervals: 60, control_effort: 0.01, speed_order: 2,\n"
+        "         tolerance: {position_m: 0.01, heading_rad: 0.01}}\n");
+  const CliResult collocation =
+      run({"solve", path("problem.yaml"), "--json", "--out", path("collocation.csv")});
+  ASSERT_EQ(collocation.status, kExitSuccess) << collocation.err << collocation.out;
+  const nlohmann::json json = nlohmann::json::parse(collocation.out);
+  for (const char* key : {"status", "method", "iterations", "solve_time_ms", "final_time_s", "cost",
+                          "length_m", "terminal_error", "max_abs_pitch_rad", "max_abs_roll_rad",
+                          "max_speed", "constraint_violation", "history", "ipopt_status",
+                          "active_constraints", "scheme", "intervals"}) {
+    EXPECT_TRUE(json.contains(key)) << key;
+  }
+  EXPECT_EQ(json["method"], "collocation");
+  EXPECT_EQ(json["ipopt_status"], "Solve_Succeeded");
+  EXPECT_LT(json["terminal_error"]["position_m"].get<double>(), 0.01);
+  // Limits hold at the points; between them (re-simulated) only slightly exceeded.
+  EXPECT_LT(json["constraint_violation"].get<double>(), 0.25) << json["violated_limit"];
+  // An x,y-only path as the guess, solved by shooting.
+  write("path.csv", "x,y\n3,6\n6,6.5\n9,8\n");
+  const CliResult shooting = run({"solve", path("problem.yaml"), "--method", "shooting", "--guess",
+                                  path("path.csv"), "--json"});
+  const nlohmann::json shot = nlohmann::json::parse(shooting.out);
+  EXPECT_EQ(shot["method"], "shooting");
+  EXPECT_EQ(shot["initial_guess"], path("path.csv"));
+  EXPECT_TRUE(shooting.status == kExitSuccess || shooting.status == kExitNotSolved);
+  EXPECT_FALSE(shot["ipopt_status"].get<std::string>().empty());
 }
 
 }  // namespace

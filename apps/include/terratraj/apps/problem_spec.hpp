@@ -192,23 +192,34 @@ struct CostSpec {
 /// `solver`: the boundary-value solver and its stopping rules.
 struct SolverSpec {
   SolverMethod method = SolverMethod::kNewton;
-  int intervals = 40;                    ///< shooting / collocation intervals, >= 2
-  int max_iterations = 100;              ///< >= 1
-  double tolerance_position_m = 0.001;   ///< terminal position error [m], > 0
-  double tolerance_heading_rad = 0.001;  ///< terminal heading error [rad], > 0
+  int intervals = 40;                          ///< shooting / collocation intervals, >= 2
+  int max_iterations = 100;                    ///< >= 1
+  double tolerance_position_m = 0.001;         ///< terminal position error [m], > 0
+  double tolerance_heading_rad = 0.001;        ///< terminal heading error [rad], > 0
   double tolerance_lagrangian_gradient = 0.1;  ///< |dJ/dq + lambda' dc/dq|_inf, > 0
   int yaw_rate_order = 4;  ///< parametric solvers: yaw-rate polynomial order, in [1, 8]
   int speed_order = 1;     ///< parametric solvers: speed polynomial order, in [1, 8]
-  std::optional<double> time_limit_s;    ///< wall-clock limit [s], >= 0; absent = none
+  // Direct transcription (shooting / collocation); docs/problem-file.md.
+  std::string scheme = "hermite_simpson";    ///< collocation: hermite_simpson | trapezoidal
+  std::string shooting_controls = "linear";  ///< shooting: linear | constant
+  std::string hessian = "auto";              ///< auto | exact | limited_memory
+  double control_effort = 0.0;               ///< weight of the integral of v'^2 + omega'^2, >= 0
+  int mesh_refinement_rounds = 0;            ///< re-solves with split intervals, >= 0
+  double mesh_refinement_tolerance = 1e-3;   ///< local error that splits an interval [m, rad]
+  std::optional<double> min_clearance_m;     ///< clearance from lethal cells [m]; absent = none
+  std::optional<double> time_limit_s;        ///< wall-clock limit [s], >= 0; absent = none
 };
 
 /// `planner`: the global planner.
 struct PlannerSpec {
   PlannerKind kind = PlannerKind::kPrm;
-  double time_limit_s = 1.0;     ///< wall-clock budget [s], >= 0
-  std::uint64_t seed = 1;        ///< random seed
-  int homotopy_classes = 3;      ///< taeasl: most distinct classes returned, >= 1
-  double frame_radius_m = 10.0;  ///< taeasl: frame radius [m], > 0
+  double time_limit_s = 1.0;               ///< wall-clock budget [s], >= 0
+  std::uint64_t seed = 1;                  ///< random seed
+  int homotopy_classes = 3;                ///< taeasl: most distinct classes returned, >= 1
+  double frame_radius_m = 10.0;            ///< taeasl: frame radius [m], > 0
+  double goal_position_tolerance_m = 0.5;  ///< prm: goal region radius [m], > 0
+  double goal_heading_tolerance = 0.35;    ///< prm: goal heading tolerance [rad], > 0
+  double goal_speed_tolerance = 0.1;       ///< prm: goal speed tolerance [m/s], > 0
 };
 
 /// The whole problem file.

@@ -11,6 +11,8 @@
 #include "terratraj/apps/command_context.hpp"
 #include "terratraj/apps/problem_spec.hpp"
 #include "terratraj/ocp/boundary_value_solver.hpp"
+#include "terratraj/ocp/direct_transcription.hpp"
+#include "terratraj/ocp/trajectory_verifier.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
 
 namespace terratraj::apps {
@@ -20,6 +22,9 @@ struct SolveOptions {
   std::filesystem::path problem;
   std::optional<std::string> method;         ///< overrides solver.method
   std::optional<std::filesystem::path> out;  ///< trajectory CSV
+  /// Shooting / collocation: start from this trajectory or x,y path (CSV) instead of the
+  /// parametric solution.
+  std::optional<std::filesystem::path> guess;
 };
 
 /// The parametric problem a problem file describes (tables not attached). Throws InputError
@@ -27,6 +32,18 @@ struct SolveOptions {
 ocp::BoundaryValueProblem boundaryValueProblem(const ProblemSpec& problem);
 /// The solver settings a problem file describes.
 ocp::BoundaryValueOptions boundaryValueOptions(const ProblemSpec& problem);
+
+/// Whether a method is direct transcription (shooting, collocation).
+bool isTranscriptionMethod(SolverMethod method);
+/// The direct-transcription settings a problem file describes (the clearance map, when
+/// solver.min_clearance_m is set, is attached by the caller).
+ocp::DirectTranscriptionOptions transcriptionOptions(const ProblemSpec& problem);
+/// The contract's report of a direct-transcription solve: `verified` is its independent
+/// re-simulation; `guess_source` says where the initial guess came from.
+nlohmann::json transcriptionReportJson(const ocp::TranscriptionSolution& solution,
+                                       const ocp::VerifiedTrajectory& verified,
+                                       const ocp::DirectTranscriptionOptions& options,
+                                       const std::string& guess_source);
 
 /// The contract's solve report for a solution.
 nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,

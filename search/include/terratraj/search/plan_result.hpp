@@ -1,0 +1,65 @@
+#pragma once
+// PlanResult: what a planner returns: a status, the best trajectory, timings, roadmap
+// statistics and the best cost over time (the anytime curve of 001_... figs. 6 and 7).
+
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "terratraj/models/trajectory.hpp"
+
+namespace terratraj::search {
+
+/// Whether a plan reached the goal region.
+enum class PlanStatus {
+  kSolved,      ///< a trajectory to the goal region was found
+  kNoSolution,  ///< none within the termination condition (see PlanResult::reason)
+};
+
+/// "solved" / "no_solution" (the contract's names).
+const char* planStatusName(PlanStatus status);
+
+/// One point of the cost-versus-time curve: a new best cost and when it was found.
+struct CostSample {
+  double time_ms = 0.0;  ///< since the start of solve() [ms]
+  double cost_s = 0.0;   ///< trajectory duration [s]
+};
+
+/// Counters of one solve().
+struct PlanStatistics {
+  std::size_t iterations = 0;        ///< milestones sampled
+  std::size_t attempts = 0;          ///< extension attempts toward milestones
+  std::size_t trapped = 0;           ///< attempts that failed (ExtensionStatus not succeeded)
+  std::size_t pruned = 0;            ///< feasible extensions discarded by branch and bound
+  std::size_t goal_attempts = 0;     ///< connections tried from a new node to the goal
+  std::size_t goal_connections = 0;  ///< of which reached the goal region
+  std::size_t improvements = 0;      ///< times the best cost improved
+  std::size_t pruned_nodes = 0;      ///< nodes removed after an improvement
+};
+
+/// The outcome of KinodynamicPrm::solve().
+struct PlanResult {
+  PlanStatus status = PlanStatus::kNoSolution;
+  std::string reason;                       ///< why there is no solution ("" when solved)
+  std::optional<double> first_solution_ms;  ///< time to the first solution [ms]
+  double first_solution_cost_s = std::numeric_limits<double>::infinity();
+  double planning_time_ms = 0.0;  ///< whole solve() including the trajectory [ms]
+  std::size_t nodes = 0;          ///< roadmap nodes at the end (root included)
+  PlanStatistics statistics;
+  /// Best cost (trajectory duration) [s]; +infinity without a solution.
+  double best_cost_s = std::numeric_limits<double>::infinity();
+  std::vector<CostSample> cost_history;  ///< one entry per improvement, in time order
+  models::Trajectory trajectory;         ///< the best trajectory, every column filled
+  double length_m = 0.0;                 ///< its arc length along the surface [m]
+
+  /// trapped / attempts (0 without attempts).
+  double trappedFraction() const {
+    return statistics.attempts == 0
+               ? 0.0
+               : static_cast<double>(statistics.trapped) / static_cast<double>(statistics.attempts);
+  }
+};
+
+}  // namespace terratraj::search

@@ -1,0 +1,61 @@
+#include "terratraj/search/trajectory_checker.hpp"
+
+#include <gtest/gtest.h>
+
+#include "search_fixtures.hpp"
+#include "terratraj/search/kinodynamic_prm.hpp"
+
+namespace terratraj::search {
+namespace {
+
+bool hasViolation(const CheckReport& report, const std::string& limit) {
+  for (const CheckViolation& v : report.violations) {
+    if (v.limit == limit) return true;
+  }
+  return false;
+}
+
+// The checker must catch each kind of broken trajectory, or the planner tests prove nothing.
+TEST(TrajectoryChecker, CatchesEachInjectedViolation) {
+  std::unique_ptr<testing::TestWorld> world = testing::makeWorld(terrain::TerrainKind::kFlat, 96);
+  KinodynamicPrm planner(world->problem);
+  const PlanResult result = planner.solve(TerminationCondition::timeLimit(0.2));
+  ASSERT_EQ(result.status, PlanStatus::kSolved);
+  const TrajectoryChecker checker(world->problem);
+  ASSERT_TRUE(checker.check(result.trajectory).ok());
+  const std::size_t mid = result.trajectory.samples.size() / 2;
+  const auto broken = [&](auto change) {
+    models::Trajectory t = result.trajectory;
+    change(t.samples[mid]);
+    return checker.check(t);
+  };
+  const double v_max = world->problem.limits.v_max;
+  EXPECT_TRUE(hasViolation(broken([&](auto& s) { s.v = 1.5 * v_max; }), "v_max"));
+  EXPECT_TRUE(hasViolation(broken([&](auto& s) { s.v = 1.5 * v_max; }), "a_max"));
+  EXPECT_TRUE(
+      hasViolation(broken([&](auto& s) { s.curvature = 3.0, s.omega = s.v * 3.0; }), "kappa_max"));
+  EXPECT_TRUE(hasViolation(
+      broken([&](auto& s) { s.curvature += 0.5, s.omega = s.v * s.curvature; }), "sigma_max"));
+  EXPECT_TRUE(hasViolation(broken([&](auto& s) { s.omega += 0.1; }), "omega_equals_v_curvature"));
+  EXPECT_TRUE(hasViolation(broken([&](auto& s) { s.y += 1.0; }), "motion"));
+  EXPECT_TRUE(hasViolation(broken([&](auto& s) { s.pitch += 0.1; }), "pitch_column"));
+  EXPECT_TRUE(hasViolation(broken([&](auto& s) { s.t = -1.0; }), "time_order"));
+  models::Trajectory short_of_goal = result.trajectory;
+  short_of_goal.samples.pop_back();
+  short_of_goal.samples.pop_back();
+  short_of_goal.samples.pop_back();
+  short_of_goal.samples.pop_back();
+  short_of_goal.samples.pop_back();
+  EXPECT_TRUE(hasViolation(checker.check(short_of_goal), "goal_region"));
+  // A lethal cell under the path.
+  terrain::GridLayer& lethal = world->map.addLayer(terrain::layer_names::kLethal, 0.0f);
+  const models::TrajectorySample& s = result.trajectory.samples[mid];
+  lethal(*world->map.geometry().cellAt({s.x, s.y})) = 1.0f;
+  EXPECT_TRUE(hasViolation(checker.check(result.trajectory), "lethal"));
+  // A steeper limit than the path's attitude.
+  world->problem.limits.v_max = 0.5 * v_max;
+  EXPECT_TRUE(hasViolation(checker.check(result.trajectory), "v_max"));
+}
+
+}  // namespace
+}  // namespace terratraj::search
