@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 
 #include "boundary_value_fixtures.hpp"
@@ -341,6 +342,7 @@ TEST(DirectTranscription, NeverWorseThanTheParametricOptimumBeyondDiscretisation
     ASSERT_TRUE(guess.has_value());
     DirectTranscriptionOptions options;
     options.intervals = 60;
+    if (std::getenv("TT_PRINT") != nullptr) options.print_level = 5;
     const Solved s = solveAndVerify(vehicle, problem, *guess, options);
     // The discretisation error: the transcription's cost against its own re-simulation.
     const double discretisation = std::abs(s.solution.result.cost - s.verified.cost);
