@@ -42,6 +42,39 @@ nlohmann::json number(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
+// The report's figures that come from the independent re-simulation (null when it failed).
+nlohmann::json verifiedTrajectoryJson(const ocp::VerifiedTrajectory& v) {
+  return {
+      {"final_time_s", v.ok ? number(v.final_time) : nullptr},
+      {"cost", v.ok ? number(v.cost) : nullptr},
+      {"length_m", v.ok ? number(v.length) : nullptr},
+      {"terminal_error",
+       {{"position_m", v.ok ? number(v.terminal_error.head<2>().norm()) : nullptr},
+        {"heading_rad", v.ok ? number(std::abs(v.terminal_error.z())) : nullptr}}},
+      {"max_abs_pitch_rad", number(v.max_abs_pitch)},
+      {"max_abs_roll_rad", number(v.max_abs_roll)},
+      {"max_speed", number(v.max_speed)},
+      {"constraint_violation", number(v.violation.amount)},
+      {"violated_limit",
+       v.violation.limit.empty() ? nlohmann::json(nullptr) : nlohmann::json(v.violation.limit)},
+      {"slope_dwell_rad2_s", number(v.slope_dwell)},
+      {"verified", v.ok},
+  };
+}
+
+// The human-readable lines of a re-simulated trajectory.
+void printVerifiedTrajectory(std::ostream& out, const ocp::VerifiedTrajectory& v) {
+  if (!v.ok) return;
+  out << "  final time  " << v.final_time << " s, cost " << v.cost << ", length " << v.length
+      << " m\n"
+      << "  terminal    " << v.terminal_error.head<2>().norm() << " m, "
+      << std::abs(v.terminal_error.z()) << " rad (re-simulated)\n"
+      << "  attitude    max |pitch| " << v.max_abs_pitch << " rad, max |roll| " << v.max_abs_roll
+      << " rad; max speed " << v.max_speed << " m/s\n"
+      << "  violation   " << v.violation.amount
+      << (v.violation.limit.empty() ? "" : " (" + v.violation.limit + ")") << '\n';
+}
+
 }  // namespace
 
 ocp::BoundaryValueProblem boundaryValueProblem(const ProblemSpec& problem) {
@@ -129,7 +162,7 @@ nlohmann::json transcriptionReportJson(const ocp::TranscriptionSolution& solutio
                           {"iterations", r.iterations}});
   }
   const bool shooting = options.scheme == ocp::TranscriptionScheme::kMultipleShooting;
-  return {
+  nlohmann::json json{
       {"status", ocp::solveStatusName(s.status)},
       {"reason", s.reason},
       {"method", shooting ? "shooting" : "collocation"},
@@ -145,26 +178,14 @@ nlohmann::json transcriptionReportJson(const ocp::TranscriptionSolution& solutio
       {"time_limit_s",
        options.time_limit_s ? nlohmann::json(*options.time_limit_s) : nlohmann::json(nullptr)},
       {"solve_time_ms", s.solve_time_ms},
-      {"final_time_s", v.ok ? number(v.final_time) : nullptr},
-      {"cost", v.ok ? number(v.cost) : nullptr},
       {"solver_cost", number(s.cost)},
-      {"length_m", v.ok ? number(v.length) : nullptr},
-      {"terminal_error",
-       {{"position_m", v.ok ? number(v.terminal_error.head<2>().norm()) : nullptr},
-        {"heading_rad", v.ok ? number(std::abs(v.terminal_error.z())) : nullptr}}},
-      {"max_abs_pitch_rad", number(v.max_abs_pitch)},
-      {"max_abs_roll_rad", number(v.max_abs_roll)},
-      {"max_speed", number(v.max_speed)},
-      {"constraint_violation", number(v.violation.amount)},
-      {"violated_limit",
-       v.violation.limit.empty() ? nlohmann::json(nullptr) : nlohmann::json(v.violation.limit)},
       {"max_defect", number(solution.max_defect)},
-      {"slope_dwell_rad2_s", number(v.slope_dwell)},
-      {"verified", v.ok},
       {"active_constraints", active},
       {"mesh_refinement", refinement},
       {"history", history},
   };
+  json.update(verifiedTrajectoryJson(v));
+  return json;
 }
 
 nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,
@@ -191,20 +212,6 @@ nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,
       {"solve_time_ms", solution.total_time_ms},
       {"solver_time_ms", s.solve_time_ms},
       {"integrations", s.integrations + solution.initial_guess.integrations},
-      {"final_time_s", v.ok ? number(v.final_time) : nullptr},
-      {"cost", v.ok ? number(v.cost) : nullptr},
-      {"length_m", v.ok ? number(v.length) : nullptr},
-      {"terminal_error",
-       {{"position_m", v.ok ? number(v.terminal_error.head<2>().norm()) : nullptr},
-        {"heading_rad", v.ok ? number(std::abs(v.terminal_error.z())) : nullptr}}},
-      {"max_abs_pitch_rad", number(v.max_abs_pitch)},
-      {"max_abs_roll_rad", number(v.max_abs_roll)},
-      {"max_speed", number(v.max_speed)},
-      {"constraint_violation", number(v.violation.amount)},
-      {"violated_limit",
-       v.violation.limit.empty() ? nlohmann::json(nullptr) : nlohmann::json(v.violation.limit)},
-      {"slope_dwell_rad2_s", number(v.slope_dwell)},
-      {"verified", v.ok},
       {"tolerance",
        {{"position_m", options.criteria.position_m},
         {"heading_rad", options.criteria.heading_rad},
@@ -212,6 +219,7 @@ nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,
       {"controls", std::vector<double>(s.q.data(), s.q.data() + s.q.size())},
       {"history", history},
   };
+  json.update(verifiedTrajectoryJson(v));
   return json;
 }
 
@@ -312,15 +320,7 @@ int runTranscription(const SolveOptions& options, const ProblemSpec& problem,
                 << " ms, Ipopt " << solution.ipopt_status << ")";
     if (!result.reason.empty()) context.out << ": " << result.reason;
     context.out << '\n';
-    if (verified.ok) {
-      context.out << "  final time  " << verified.final_time << " s, cost " << verified.cost
-                  << ", length " << verified.length << " m\n"
-                  << "  terminal    " << verified.terminal_error.head<2>().norm() << " m, "
-                  << std::abs(verified.terminal_error.z()) << " rad (re-simulated)\n"
-                  << "  violation   " << verified.violation.amount
-                  << (verified.violation.limit.empty() ? "" : " (" + verified.violation.limit + ")")
-                  << '\n';
-    }
+    printVerifiedTrajectory(context.out, verified);
     if (options.out && verified.ok)
       context.out << "  trajectory  " << options.out->string() << '\n';
   }
@@ -383,16 +383,7 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
                 << " iterations, " << solution.total_time_ms << " ms)";
     if (!solution.reason.empty()) context.out << ": " << solution.reason;
     context.out << '\n';
-    if (v.ok) {
-      context.out << "  final time  " << v.final_time << " s, cost " << v.cost << ", length "
-                  << v.length << " m\n"
-                  << "  terminal    " << v.terminal_error.head<2>().norm() << " m, "
-                  << std::abs(v.terminal_error.z()) << " rad (re-simulated)\n"
-                  << "  attitude    max |pitch| " << v.max_abs_pitch << " rad, max |roll| "
-                  << v.max_abs_roll << " rad; max speed " << v.max_speed << " m/s\n"
-                  << "  violation   " << v.violation.amount
-                  << (v.violation.limit.empty() ? "" : " (" + v.violation.limit + ")") << '\n';
-    }
+    printVerifiedTrajectory(context.out, v);
     if (options.out && v.ok) context.out << "  trajectory  " << options.out->string() << '\n';
   }
   return solution.status == ocp::SolveStatus::kConverged ? kExitSuccess : kExitNotSolved;
