@@ -8,13 +8,12 @@
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
+#include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/apps/vehicle_factory.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
-#include "terratraj/models/velocity_table.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/terrain/input_error.hpp"
 #include "terratraj/terrain/terrain_generator.hpp"
-#include "terratraj/terrain/terrain_source.hpp"
 
 namespace terratraj::apps {
 namespace {
@@ -167,29 +166,16 @@ int runPlan(const PlanOptions& options, CommandContext& context) {
   }
   if (options.seed) problem.planner.seed = *options.seed;
 
-  context.log->info("{}: loading the terrain", options.problem.string());
-  const terrain::ElevationMap map = terrain::loadTerrain(problem.terrain);
-  resolvePosesOnTerrain(problem, map);
-  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
-  const std::unique_ptr<models::TerrainFollowingModel> vehicle =
-      makeTerrainFollowingModel(problem.vehicle.model, surface);
-  restingAttitude(*vehicle, problem.start, "start", problem);
-  restingAttitude(*vehicle, problem.goal, "goal", problem);
+  const ProblemScene scene(problem, context);
+  const terrain::ElevationMap& map = scene.map();
+  const models::TerrainFollowingModel& vehicle = scene.vehicle();
 
-  search::PlanningProblem query(map, *vehicle);
+  search::PlanningProblem query(map, vehicle);
   query.limits = problem.vehicle.limits;
   query.start = startState(problem);
   query.goal = goalRegion(problem);
-  std::optional<models::PitchSpeedTable> pitch_table;
-  std::optional<models::RollCurvatureSpeedTable> roll_table;
-  if (problem.vehicle.tables.pitch) {
-    pitch_table = models::readPitchTable(*problem.vehicle.tables.pitch);
-    query.pitch_table = &*pitch_table;
-  }
-  if (problem.vehicle.tables.roll_curvature) {
-    roll_table = models::readRollCurvatureTable(*problem.vehicle.tables.roll_curvature);
-    query.roll_curvature_table = &*roll_table;
-  }
+  query.pitch_table = scene.pitchTable();
+  query.roll_curvature_table = scene.rollCurvatureTable();
   if (const std::optional<std::string> error = query.validate()) {
     throw InputError(problem.source_file.string() + ": " + *error);
   }
@@ -198,7 +184,7 @@ int runPlan(const PlanOptions& options, CommandContext& context) {
   prm.seed = problem.planner.seed;
   search::KinodynamicPrm planner(query, prm);
   context.log->info("planning with prm for {} s (seed {}, {} model)", problem.planner.time_limit_s,
-                    prm.seed, vehicle->name());
+                    prm.seed, vehicle.name());
   const search::PlanResult result =
       planner.solve(search::TerminationCondition::timeLimit(problem.planner.time_limit_s));
 

@@ -5,9 +5,8 @@
 
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/problem_loader.hpp"
+#include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/apps/terrain_commands.hpp"
-#include "terratraj/apps/vehicle_factory.hpp"
-#include "terratraj/models/velocity_table.hpp"
 #include "terratraj/terrain/input_error.hpp"
 #include "terratraj/terrain/terrain_source.hpp"
 #include "terratraj/terrain/terrain_statistics.hpp"
@@ -84,10 +83,6 @@ nlohmann::json attitudeJson(const models::AttitudeResult& result) {
 }
 
 // Reads the problem's look-up tables, so that a bad table is reported now.
-void checkTables(const VehicleTables& tables) {
-  if (tables.pitch) models::readPitchTable(*tables.pitch);
-  if (tables.roll_curvature) models::readRollCurvatureTable(*tables.roll_curvature);
-}
 
 }  // namespace
 
@@ -136,15 +131,11 @@ nlohmann::json problemJson(const ProblemSpec& problem) {
 
 int runCheck(const CheckOptions& options, CommandContext& context) {
   ProblemSpec problem = loadProblem(options.problem);
-  context.log->info("{}: problem read; loading its terrain", options.problem.string());
-  const terrain::ElevationMap map = terrain::loadTerrain(problem.terrain);
-  resolvePosesOnTerrain(problem, map);
-  checkTables(problem.vehicle.tables);
-  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
-  const std::unique_ptr<models::TerrainFollowingModel> vehicle =
-      makeTerrainFollowingModel(problem.vehicle.model, surface);
-  const models::AttitudeResult start = restingAttitude(*vehicle, problem.start, "start", problem);
-  const models::AttitudeResult goal = restingAttitude(*vehicle, problem.goal, "goal", problem);
+  context.log->info("{}: problem read", options.problem.string());
+  const ProblemScene scene(problem, context);
+  const terrain::ElevationMap& map = scene.map();
+  const models::AttitudeResult& start = scene.startAttitude();
+  const models::AttitudeResult& goal = scene.goalAttitude();
   const terrain::TerrainStatistics stats = terrain::computeTerrainStatistics(map);
   if (context.json) {
     nlohmann::json json{{"status", "ok"},

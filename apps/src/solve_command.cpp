@@ -7,13 +7,12 @@
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
+#include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/apps/vehicle_factory.hpp"
 #include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
-#include "terratraj/models/velocity_table.hpp"
 #include "terratraj/terrain/clearance_map.hpp"
 #include "terratraj/terrain/input_error.hpp"
-#include "terratraj/terrain/terrain_source.hpp"
 
 namespace terratraj::apps {
 namespace {
@@ -343,33 +342,19 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
   if (options.guess && !transcription) {
     throw InputError("--guess: only shooting and collocation take an initial guess");
   }
-  context.log->info("{}: loading the terrain", options.problem.string());
-  const terrain::ElevationMap map = terrain::loadTerrain(problem.terrain);
-  resolvePosesOnTerrain(problem, map);
-  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
-  const std::unique_ptr<models::TerrainFollowingModel> vehicle =
-      makeTerrainFollowingModel(problem.vehicle.model, surface);
-  restingAttitude(*vehicle, problem.start, "start", problem);
-  restingAttitude(*vehicle, problem.goal, "goal", problem);
+  const ProblemScene scene(problem, context);
+  const terrain::ElevationMap& map = scene.map();
+  const models::TerrainFollowingModel& vehicle = scene.vehicle();
   ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem);
-  std::optional<models::PitchSpeedTable> pitch_table;
-  std::optional<models::RollCurvatureSpeedTable> roll_table;
-  if (problem.vehicle.tables.pitch) {
-    pitch_table = models::readPitchTable(*problem.vehicle.tables.pitch);
-    bvp.tables.pitch = &*pitch_table;
-  }
-  if (problem.vehicle.tables.roll_curvature) {
-    roll_table = models::readRollCurvatureTable(*problem.vehicle.tables.roll_curvature);
-    bvp.tables.roll_curvature = &*roll_table;
-  }
+  bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable()};
   if (transcription) {
-    return runTranscription(options, problem, map, *vehicle, bvp, solve_options,
+    return runTranscription(options, problem, map, vehicle, bvp, solve_options,
                             transcription_options, context);
   }
   context.log->info("solving with {} on the {} model",
-                    ocp::boundaryValueMethodName(solve_options.method), vehicle->name());
+                    ocp::boundaryValueMethodName(solve_options.method), vehicle.name());
   const ocp::BoundaryValueSolution solution =
-      ocp::solveBoundaryValue(*vehicle, bvp, solve_options, &map);
+      ocp::solveBoundaryValue(vehicle, bvp, solve_options, &map);
   if (options.out && solution.verified.ok) {
     models::writeTrajectoryCsv(solution.verified.trajectory, *options.out);
   }

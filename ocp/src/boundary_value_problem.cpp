@@ -11,13 +11,27 @@ double wrapAngle(double angle) {
   return wrapped;
 }
 
-std::optional<std::string> validateProblem(const BoundaryValueProblem& problem) {
+std::optional<std::string> validateBoundaryStates(const BoundaryValueProblem& problem) {
   const auto finite = [](const VehicleState& s) {
     return std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.heading) &&
            std::isfinite(s.v) && std::isfinite(s.omega);
   };
   if (!finite(problem.start)) return "start state is not finite";
   if (!finite(problem.goal)) return "goal state is not finite";
+  if (!(problem.cost.alpha >= 0.0) || !std::isfinite(problem.cost.alpha)) {
+    return "cost alpha must be finite and >= 0";
+  }
+  const double dx = problem.goal.x - problem.start.x;
+  const double dy = problem.goal.y - problem.start.y;
+  if (std::hypot(dx, dy) < 1e-6 &&
+      std::abs(wrapAngle(problem.goal.heading - problem.start.heading)) < 1e-6) {
+    return "start and goal are the same pose: there is nothing to solve";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> validateProblem(const BoundaryValueProblem& problem) {
+  if (std::optional<std::string> why = validateBoundaryStates(problem)) return why;
   if (problem.orders.yaw_rate < 1 || problem.orders.yaw_rate > 8) {
     return "yaw-rate polynomial order " + std::to_string(problem.orders.yaw_rate) +
            " is outside [1, 8]";
@@ -31,19 +45,10 @@ std::optional<std::string> validateProblem(const BoundaryValueProblem& problem) 
            " unknowns, fewer than the 3 terminal constraints (x, y, heading): raise "
            "solver.yaw_rate_order";
   }
-  if (!(problem.cost.alpha >= 0.0) || !std::isfinite(problem.cost.alpha)) {
-    return "cost alpha must be finite and >= 0";
-  }
   if (problem.orders.speed == 1 && problem.start.v == 0.0 && problem.goal.v == 0.0) {
     return "the speed polynomial of order 1 from start.v = 0 to goal.v = 0 is zero throughout: "
            "the vehicle cannot move (raise solver.speed_order to 2 or more, or give a "
            "non-zero start or goal speed)";
-  }
-  const double dx = problem.goal.x - problem.start.x;
-  const double dy = problem.goal.y - problem.start.y;
-  if (std::hypot(dx, dy) < 1e-6 &&
-      std::abs(wrapAngle(problem.goal.heading - problem.start.heading)) < 1e-6) {
-    return "start and goal are the same pose: there is nothing to solve";
   }
   return std::nullopt;
 }

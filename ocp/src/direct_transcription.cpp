@@ -493,10 +493,7 @@ TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingMod
   if (std::optional<std::string> why = validateTranscriptionOptions(options)) {
     return finish(SolveStatus::kError, *why);
   }
-  // The control orders belong to the parametric solvers: validated here with ones that pass.
-  BoundaryValueProblem checked = problem;
-  checked.orders = ControlOrders{4, 2};
-  if (std::optional<std::string> why = validateProblem(checked)) {
+  if (std::optional<std::string> why = validateBoundaryStates(problem)) {
     return finish(SolveStatus::kError, *why);
   }
   if (guess.t.size() < 2 || guess.t.size() != guess.points.size() || !(guess.finalTime() > 0.0)) {
@@ -514,6 +511,9 @@ TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingMod
     layout.mesh = uniformMesh(options.intervals);
     // A twentieth of a cell: see TranscriptionLayout::hessian_position_step.
     layout.hessian_position_step = 0.05 * vehicle.surface().map().geometry().cell;
+    // The iteration records are appended inside Ipopt's callback: no allocation there.
+    out.result.history.reserve(static_cast<std::size_t>(options.max_iterations + 1) *
+                               static_cast<std::size_t>(options.refinement.max_rounds + 1));
     TranscriptionGuess current = guess;
     int total_iterations = 0;
     for (int round = 0;; ++round) {

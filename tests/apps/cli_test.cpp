@@ -393,7 +393,9 @@ TEST_F(CliTest, SolveByCollocationAndShooting) {
   const nlohmann::json shot = nlohmann::json::parse(shooting.out);
   EXPECT_EQ(shot["method"], "shooting");
   EXPECT_EQ(shot["initial_guess"], path("path.csv"));
-  EXPECT_TRUE(shooting.status == kExitSuccess || shooting.status == kExitNotSolved);
+  EXPECT_EQ(shooting.status, kExitSuccess) << shooting.out;
+  EXPECT_EQ(shot["status"], "converged");
+  EXPECT_LT(shot["terminal_error"]["position_m"].get<double>(), 0.01);
   EXPECT_FALSE(shot["ipopt_status"].get<std::string>().empty());
 }
 

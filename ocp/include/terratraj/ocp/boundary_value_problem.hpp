@@ -60,6 +60,9 @@ struct BoundaryValueProblem {
 /// Why a problem cannot be posed (orders out of range, non-finite values, a speed profile that
 /// is zero throughout), or std::nullopt when it can.
 std::optional<std::string> validateProblem(const BoundaryValueProblem& problem);
+/// The part of validateProblem that does not depend on the control parametrisation (finite
+/// states, alpha >= 0, start and goal distinct): what direct transcription needs.
+std::optional<std::string> validateBoundaryStates(const BoundaryValueProblem& problem);
 
 /// Heading difference a - b wrapped to (-pi, pi] [rad].
 double wrapAngle(double angle);
