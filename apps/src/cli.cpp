@@ -144,16 +144,28 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   PlanOptions plan;
   CLI::App* plan_command = app.add_subcommand(
       "plan",
-      "Global planning from the problem's start to its goal region with the kinodynamic PRM "
-      "(anytime: it improves the trajectory until the time limit). Writes "
-      "<out-dir>/solution_0.csv. Exit 0 solved, 1 no solution in the time limit, 2 bad input.");
+      "Global planning from the problem's start to its goal region: the kinodynamic PRM "
+      "(prm, anytime), the state lattice with A* / ARA* (lattice) or the topology-aware lattice "
+      "(taeasl: one solution per homotopy class). Writes <out-dir>/solution_<k>.csv. Exit 0 "
+      "solved, 1 no solution in the time limit, 2 bad input.");
   plan_command->add_option("PROBLEM", plan.problem, "problem YAML")->required();
-  plan_command->add_option("--planner", plan.planner, "overrides planner.kind (prm)")
+  plan_command
+      ->add_option("--planner", plan.planner, "overrides planner.kind (prm, lattice, taeasl)")
       ->check(CLI::IsMember(plannerKindNames()));
   plan_command->add_option("--time-limit", plan.time_limit_s, "overrides planner.time_limit_s [s]");
   plan_command->add_option("--seed", plan.seed, "overrides planner.seed");
   plan_command->add_option("--out-dir", plan.out_dir, "output folder")->capture_default_str();
   plan_command->add_flag("--json", json_flag, "print the report as one JSON object");
+
+  PrimitivesOptions primitives;
+  CLI::App* primitives_command = app.add_subcommand(
+      "primitives",
+      "Generate the motion primitives of the problem's lattice (planner.lattice_resolution_m, "
+      "planner.heading_count) for its vehicle limits, with the boundary-value solver on flat "
+      "ground, and write them as JSON (for planner.primitives).");
+  primitives_command->add_option("PROBLEM", primitives.problem, "problem YAML")->required();
+  primitives_command->add_option("--out", primitives.out, "primitive file to write")->required();
+  primitives_command->add_flag("--json", json_flag, "print the report as one JSON object");
 
   CLI::App* lut_command = app.add_subcommand(
       "lut", "Kinodynamic look-up tables (speed limits by pitch, roll x curvature).");
@@ -238,6 +250,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (*check_command) return runCheck(check, context);
     if (*solve_command) return runSolve(solve, context);
     if (*plan_command) return runPlan(plan, context);
+    if (*primitives_command) return runPrimitives(primitives, context);
     if (*lut_build_command) return runLutBuild(lut_build, context);
     if (*lut_check_command) return runLutCheck(lut_check, context);
     if (*lut_physics_command) return runLutPhysics(lut_physics, context);

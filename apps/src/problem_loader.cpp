@@ -159,6 +159,7 @@ struct Range {
   static Range any() { return {}; }
   static Range positive() { return {Bound::kOpen, 0.0, Bound::kNone, 0.0, ""}; }
   static Range nonNegative() { return {Bound::kClosed, 0.0, Bound::kNone, 0.0, ""}; }
+  static Range atLeast(double low) { return {Bound::kClosed, low, Bound::kNone, 0.0, ""}; }
   static Range openInterval(double low, double high, std::string unit_name) {
     return {Bound::kOpen, low, Bound::kOpen, high, std::move(unit_name)};
   }
@@ -698,10 +699,13 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
 
 // `planner`.
 PlannerSpec parsePlanner(const Context& ctx, const Field& field) {
-  const MapReader map(ctx, field,
-                      {"kind", "time_limit_s", "seed", "homotopy_classes", "frame_radius_m",
-                       "goal_position_tolerance_m", "goal_heading_tolerance",
-                       "goal_heading_tolerance_deg", "goal_speed_tolerance"});
+  const MapReader map(
+      ctx, field,
+      {"kind", "time_limit_s", "seed", "homotopy_classes", "frame_radius_m",
+       "goal_position_tolerance_m", "goal_heading_tolerance", "goal_heading_tolerance_deg",
+       "goal_speed_tolerance", "lattice_resolution_m", "heading_count", "primitives",
+       "primitive_speed", "algorithm", "initial_epsilon", "epsilon_step", "frame_anchor",
+       "heuristic_weight", "max_signature_length"});
   PlannerSpec planner;
   if (const std::optional<Field> kind = map.find("kind")) {
     planner.kind = readEnum<PlannerKind>(ctx, *kind, parsePlannerKind, plannerKindNames());
@@ -716,6 +720,35 @@ PlannerSpec parsePlanner(const Context& ctx, const Field& field) {
   map.readAngleInto("goal_heading_tolerance", Range::openInterval(0.0, 360.0, "deg"),
                     planner.goal_heading_tolerance);
   map.readNumberInto("goal_speed_tolerance", Range::positive(), planner.goal_speed_tolerance);
+  planner.lattice_resolution_m = map.optionalNumber("lattice_resolution_m", Range::positive());
+  map.readIntInto("heading_count", 4, 1024, planner.heading_count);
+  if (const std::optional<Field> file = map.find("primitives")) {
+    planner.primitives = readPath(ctx, *file);
+  }
+  planner.primitive_speed = map.optionalNumber("primitive_speed", Range::positive());
+  const auto choice = [&](const char* key, const std::vector<std::string>& names,
+                          std::string& value) {
+    if (const std::optional<Field> found = map.find(key)) {
+      value = readEnum<std::string>(
+          ctx, *found,
+          [&](const std::string& text) {
+            return std::find(names.begin(), names.end(), text) != names.end()
+                       ? std::optional<std::string>(text)
+                       : std::nullopt;
+          },
+          names);
+    }
+  };
+  choice("algorithm", {"arastar", "astar"}, planner.algorithm);
+  choice("frame_anchor", {"map_center", "start", "midpoint"}, planner.frame_anchor);
+  map.readNumberInto("initial_epsilon", Range::atLeast(1.0), planner.initial_epsilon);
+  map.readNumberInto("epsilon_step", Range::positive(), planner.epsilon_step);
+  map.readNumberInto("heuristic_weight", Range::atLeast(1.0), planner.heuristic_weight);
+  if (map.find("max_signature_length")) {
+    int length = 0;
+    map.readIntInto("max_signature_length", 1, 10000, length);
+    planner.max_signature_length = length;
+  }
   return planner;
 }
 

@@ -2,7 +2,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -191,10 +193,6 @@ TEST_F(PlanCommandTest, BadInputsExitWith2AndNameTheCulprit) {
       plan(problemYaml(kHills, "{x: 2.4, y: 12.0, heading_deg: 0, v: 0.0, omega: 0.5}", kGoal)),
       "start.omega");
   // Planners another issue builds, and bad options.
-  expectBad(plan(problemYaml(kHills, kStart, kGoal), {"--planner", "lattice"}),
-            "not implemented yet");
-  expectBad(plan(problemYaml(kHills, kStart, kGoal), {"--planner", "taeasl"}),
-            "not implemented yet");
   expectBad(plan(problemYaml(kHills, kStart, kGoal), {"--planner", "rrt"}), "--planner");
   expectBad(plan(problemYaml(kHills, kStart, kGoal), {"--time-limit=-1"}), "--time-limit");
   expectBad(plan(problemYaml(kHills, kStart, kGoal, ", goal_speed_tolerance: 0")),
@@ -227,6 +225,93 @@ TEST_F(PlanCommandTest, DemoPlansWithThePrm) {
   EXPECT_EQ(plan_report["constraint_violation"].get<double>(), 0.0);
   EXPECT_TRUE(fs::exists(path("demo/plan.csv")));
   EXPECT_EQ(plan_report["solutions"][0]["file"], path("demo") + "/plan.csv");
+}
+
+// The lattice planners: one solution (lattice) or one per homotopy class (taeasl), each written,
+// re-checked independently and named by its signature.
+TEST_F(PlanCommandTest, LatticeAndTaeaslSolveAndReportEverySolution) {
+  ::setenv("TERRATRAJ_CACHE_DIR", path("cache").c_str(), 1);
+  const CliRun lattice =
+      plan(problemYaml(kHills, kStart, kGoal), {"--planner", "lattice", "--time-limit", "2"});
+  ASSERT_EQ(lattice.status, 0) << lattice.err << lattice.out;
+  const nlohmann::json report = nlohmann::json::parse(lattice.out);
+  EXPECT_EQ(report["planner"], "lattice");
+  EXPECT_EQ(report["lattice"]["primitives"]["source"], "generated");
+  ASSERT_EQ(report["solutions"].size(), 1u);
+  EXPECT_EQ(report["solutions"][0]["homotopy"], "");
+  EXPECT_TRUE(report["solutions"][0]["check"]["ok"].get<bool>());
+  EXPECT_TRUE(fs::exists(path("out/solution_0.csv")));
+
+  // A forest: several classes, distinct signatures; the primitives now come from the cache.
+  const std::string forest = "generate: {kind: forest, rows: 128, cols: 128, cell: 0.25, seed: 3}";
+  const CliRun taeasl =
+      plan(problemYaml(forest, "{x: 3.2, y: 16.0, heading_deg: 0}",
+                       "{x: 28.8, y: 16.0, heading_deg: 0}", ", frame_anchor: midpoint"),
+           {"--planner", "taeasl", "--time-limit", "5"});
+  ASSERT_EQ(taeasl.status, 0) << taeasl.err << taeasl.out;
+  const nlohmann::json classes = nlohmann::json::parse(taeasl.out);
+  EXPECT_EQ(classes["lattice"]["primitives"]["source"], "cache");
+  ASSERT_GE(classes["solutions"].size(), 2u);
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < classes["solutions"].size(); ++k) {
+    const nlohmann::json& s = classes["solutions"][k];
+    EXPECT_TRUE(s["check"]["ok"].get<bool>()) << s.dump();
+    EXPECT_TRUE(fs::exists(s["file"].get<std::string>()));
+    EXPECT_EQ(std::count(names.begin(), names.end(), s["homotopy"].get<std::string>()), 0);
+    names.push_back(s["homotopy"].get<std::string>());
+  }
+  EXPECT_FALSE(classes["taeasl"]["frames"].empty());
+  ::unsetenv("TERRATRAJ_CACHE_DIR");
+}
+
+TEST_F(PlanCommandTest, LatticeBadInputsExitWith2) {
+  ::setenv("TERRATRAJ_CACHE_DIR", path("cache").c_str(), 1);
+  const auto expectBad = [](const CliRun& r, const std::string& what) {
+    EXPECT_EQ(r.status, 2) << r.out << r.err;
+    EXPECT_THAT(r.err + r.out, HasSubstr(what));
+  };
+  expectBad(plan(problemYaml(kHills, kStart, kGoal, ", primitives: missing.json"),
+                 {"--planner", "lattice"}),
+            "missing.json: primitive file not found");
+  // A file for another lattice.
+  ASSERT_EQ(
+      run({"primitives", write("p.yaml", problemYaml(kHills, kStart, kGoal, ", heading_count: 8")),
+           "--out", path("eight.json")})
+          .status,
+      0);
+  expectBad(plan(problemYaml(kHills, kStart, kGoal, ", primitives: " + path("eight.json")),
+                 {"--planner", "lattice"}),
+            "heading_count");
+  expectBad(plan(problemYaml(kHills, kStart, kGoal, ", goal_position_tolerance_m: 0.1"),
+                 {"--planner", "lattice"}),
+            "planner.goal_position_tolerance_m");
+  expectBad(
+      plan(problemYaml(kHills, kStart, kGoal, ", algorithm: dijkstra"), {"--planner", "lattice"}),
+      "planner.algorithm");
+  // The start inside an obstacle cluster.
+  const std::string forest = "generate: {kind: forest, rows: 128, cols: 128, cell: 0.25, seed: 3}";
+  const terrain::ElevationMap map = [] {
+    terrain::GeneratorOptions options;
+    options.kind = terrain::TerrainKind::kForest;
+    options.rows = options.cols = 128;
+    options.seed = 3;
+    return terrain::generateTerrain(options);
+  }();
+  const terrain::GridLayer& lethal = *map.findLayer("lethal");
+  std::string inside;
+  for (int r = 0; r < 128 && inside.empty(); ++r) {
+    for (int c = 0; c < 128 && inside.empty(); ++c) {
+      if (lethal(r, c) != 0.0f) {
+        inside = "{x: " + std::to_string((c + 0.5) * 0.25) +
+                 ", y: " + std::to_string((r + 0.5) * 0.25) + ", heading_deg: 0}";
+      }
+    }
+  }
+  ASSERT_FALSE(inside.empty());
+  expectBad(plan(problemYaml(forest, inside, "{x: 28.8, y: 16.0, heading_deg: 0}"),
+                 {"--planner", "taeasl"}),
+            "start");
+  ::unsetenv("TERRATRAJ_CACHE_DIR");
 }
 
 }  // namespace

@@ -1,12 +1,14 @@
 #pragma once
 // `terratraj plan`: global planning from the problem's start to its goal region with the
-// kinodynamic PRM (search::KinodynamicPrm, 001_...), the contract's JSON report and the best
-// trajectory as CSV (`<out-dir>/solution_0.csv`).
+// kinodynamic PRM (search::KinodynamicPrm, 001_...), the state lattice (A* / ARA*) or the
+// topology-aware lattice (TAEASL, 002_...); the contract's JSON report and every solution as CSV
+// (`<out-dir>/solution_<k>.csv`, best first; one per homotopy class for taeasl).
 
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -32,10 +34,10 @@ struct PlanReportInfo {
   std::string planner = "prm";
   double time_limit_s = 0.0;
   std::uint64_t seed = 1;
-  std::optional<std::filesystem::path> file;  ///< the trajectory CSV, when written
-  std::optional<search::CheckReport> check;   ///< the independent re-check, when solved
+  std::vector<std::filesystem::path> files;         ///< each solution's CSV, when written
+  std::vector<search::CheckReport> checks;          ///< each solution's independent re-check
+  nlohmann::json extra = nlohmann::json::object();  ///< more top-level keys (lattice, frames)
 };
-
 /// The contract's plan report (status, planner, time_limit_s, first_solution_ms,
 /// planning_time_ms, nodes, trapped_fraction, solutions[{cost_s, length_m, homotopy, file}])
 /// plus: seed, reason, best_cost_s, first_solution_cost_s, statistics, cost_history
@@ -49,9 +51,21 @@ nlohmann::json planDemoProblem(const terrain::ElevationMap& map, const std::file
                                double time_limit_s, CommandContext& context);
 
 /// Runs the command: exit 0 solved, 1 no solution (the report still printed), InputError
-/// (exit 2) for bad input: an unreadable problem, a planner other than prm ("not implemented
-/// yet"), a negative time limit, start or goal off the map, on lethal or no-data cells, at an
-/// attitude beyond the limits, or a start turning in place.
+/// (exit 2) for bad input: an unreadable problem, a negative time limit, start or goal off the
+/// map, on lethal or no-data cells, at an attitude beyond the limits, or a start turning in
+/// place; for the lattice planners also a missing or inconsistent primitive file, a goal
+/// region holding no lattice state, a start with non-zero curvature.
 int runPlan(const PlanOptions& options, CommandContext& context);
+
+/// Options of `terratraj primitives`.
+struct PrimitivesOptions {
+  std::filesystem::path problem;
+  std::filesystem::path out;  ///< the primitive file to write
+};
+
+/// Generates the primitives of the problem's lattice for its vehicle limits (never from the
+/// cache) and writes them to `out`. Exit 0, or InputError (exit 2) for bad input or when a
+/// heading gets no primitive (the failures listed).
+int runPrimitives(const PrimitivesOptions& options, CommandContext& context);
 
 }  // namespace terratraj::apps

@@ -220,6 +220,19 @@ struct PlannerSpec {
   double goal_position_tolerance_m = 0.5;  ///< prm: goal region radius [m], > 0
   double goal_heading_tolerance = 0.35;    ///< prm: goal heading tolerance [rad], > 0
   double goal_speed_tolerance = 0.1;       ///< prm: goal speed tolerance [m/s], > 0
+  // Lattice planners (lattice, taeasl); docs/planning.md.
+  /// Lattice spacing [m], > 0 (a multiple of the map cell is fastest); absent: the multiple of
+  /// the cell nearest 0.5 m.
+  std::optional<double> lattice_resolution_m;
+  int heading_count = 16;                           ///< headings of the lattice, in [4, 1024]
+  std::optional<std::filesystem::path> primitives;  ///< primitive file; absent: the cache
+  std::optional<double> primitive_speed;            ///< generation speed [m/s]; absent: v_max
+  std::string algorithm = "arastar";                ///< lattice: arastar | astar
+  double initial_epsilon = 3.0;                     ///< arastar: first heuristic weight, >= 1
+  double epsilon_step = 0.5;                        ///< arastar: decrease per round, > 0
+  std::string frame_anchor = "map_center";          ///< taeasl: map_center | start | midpoint
+  double heuristic_weight = 1.0;                    ///< taeasl: weight of the heuristic, >= 1
+  std::optional<int> max_signature_length;          ///< taeasl: absent: 2 x frames + 2
 };
 
 /// The whole problem file.

@@ -39,6 +39,33 @@ struct PlanStatistics {
   std::size_t pruned_nodes = 0;      ///< nodes removed after an improvement
 };
 
+/// Counters of a lattice search (LatticePlanner, TaeaslPlanner).
+struct SearchStatistics {
+  std::size_t expansions = 0;         ///< nodes expanded
+  std::size_t generated = 0;          ///< successor relaxations that improved a node
+  std::size_t edge_evaluations = 0;   ///< edges evaluated on the terrain (cache misses)
+  std::size_t invalid_edges = 0;      ///< of which were invalid
+  std::size_t cache_hits = 0;         ///< edge evaluations answered by the cache
+  std::size_t rounds = 0;             ///< ARA*: improvePath rounds run
+  double final_epsilon = 1.0;         ///< ARA*: the heuristic weight of the last finished round
+  std::size_t homotopy_classes = 0;   ///< TAEASL: classes (open lists) created
+  std::size_t frames = 0;             ///< TAEASL: reference frames
+  std::size_t pruned_signatures = 0;  ///< TAEASL: successors dropped for a too-long signature
+};
+
+/// One returned solution (a lattice planner may return several, one per homotopy class).
+struct PlanSolution {
+  models::Trajectory trajectory;  ///< every column filled
+  double cost_s = 0.0;            ///< trajectory duration (with the speed profile) [s]
+  double search_cost_s = 0.0;     ///< the search's cost of the path [s]
+  double length_m = 0.0;          ///< planar length [m]
+  std::string homotopy;           ///< class signature ("" for planners without classes)
+  /// Whether the search proved it the cheapest path in its class (TAEASL) or overall (A* /
+  /// ARA* at epsilon 1), up to the lattice.
+  bool proven_optimal = false;
+  double found_ms = 0.0;  ///< when the search found it [ms]
+};
+
 /// The outcome of KinodynamicPrm::solve().
 struct PlanResult {
   PlanStatus status = PlanStatus::kNoSolution;
@@ -53,6 +80,10 @@ struct PlanResult {
   std::vector<CostSample> cost_history;  ///< one entry per improvement, in time order
   models::Trajectory trajectory;         ///< the best trajectory, every column filled
   double length_m = 0.0;                 ///< its arc length along the surface [m]
+  /// Lattice planners: every solution, best first (the first is `trajectory`); empty for the
+  /// PRM, whose single solution is `trajectory`.
+  std::vector<PlanSolution> solutions;
+  SearchStatistics search;  ///< lattice planners' counters
 
   /// trapped / attempts (0 without attempts).
   double trappedFraction() const {

@@ -1,0 +1,47 @@
+#include "lattice_search_core.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace terratraj::search::detail {
+
+const CachedEdge& EdgeCache::get(const LatticeState& s, std::uint64_t state_key, int e,
+                                 SearchStatistics& stats, const ReferenceFramesAdapter* frames) {
+  const std::uint64_t key = (state_key << 10) | static_cast<std::uint64_t>(e);
+  auto [entry, inserted] = table_.insert(key);
+  if (!inserted) {
+    ++stats.cache_hits;
+    return *entry;
+  }
+  ++stats.edge_evaluations;
+  const EdgeEvaluation evaluation = graph_->evaluate(s, e);
+  entry->status = static_cast<std::uint8_t>(evaluation.status);
+  if (evaluation.status != EdgeStatus::kValid) {
+    ++stats.invalid_edges;
+    entry->cost = std::numeric_limits<double>::infinity();
+    return *entry;
+  }
+  entry->cost = evaluation.cost;
+  if (frames != nullptr) {
+    graph_->edgePoints(s, e, points_);
+    scratch_ = HomotopySignature();
+    frames->crossings(points_, scratch_);
+    entry->crossings_begin = static_cast<std::uint32_t>(crossings_.size());
+    entry->crossings_count = static_cast<std::uint16_t>(scratch_.size());
+    for (const FrameCrossing& c : scratch_.crossings()) crossings_.push_back(c);
+  }
+  return *entry;
+}
+
+std::vector<LatticeStep> reconstructPath(const std::vector<SearchNode>& nodes, std::int32_t node) {
+  std::vector<LatticeStep> path;
+  while (node >= 0 && nodes[node].parent >= 0) {
+    const SearchNode& n = nodes[node];
+    path.push_back({nodes[n.parent].state, n.edge});
+    node = n.parent;
+  }
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+}  // namespace terratraj::search::detail
