@@ -654,6 +654,21 @@ void parseTolerance(const Context& ctx, const Field& field, SolverSpec& solver) 
                      solver.tolerance_lagrangian_gradient);
 }
 
+// A string key restricted to `names`, into `value` when present.
+void readChoiceInto(const Context& ctx, const MapReader& map, const char* key,
+                    const std::vector<std::string>& names, std::string& value) {
+  if (const std::optional<Field> found = map.find(key)) {
+    value = readEnum<std::string>(
+        ctx, *found,
+        [&](const std::string& text) {
+          return std::find(names.begin(), names.end(), text) != names.end()
+                     ? std::optional<std::string>(text)
+                     : std::nullopt;
+        },
+        names);
+  }
+}
+
 // `solver`.
 SolverSpec parseSolver(const Context& ctx, const Field& field) {
   const MapReader map(
@@ -674,18 +689,7 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
   }
   solver.time_limit_s = map.optionalNumber("time_limit_s", Range::nonNegative());
   const auto choice = [&](const char* key, const std::vector<std::string>& names,
-                          std::string& value) {
-    if (const std::optional<Field> found = map.find(key)) {
-      value = readEnum<std::string>(
-          ctx, *found,
-          [&](const std::string& text) {
-            return std::find(names.begin(), names.end(), text) != names.end()
-                       ? std::optional<std::string>(text)
-                       : std::nullopt;
-          },
-          names);
-    }
-  };
+                          std::string& value) { readChoiceInto(ctx, map, key, names, value); };
   choice("scheme", {"hermite_simpson", "trapezoidal"}, solver.scheme);
   choice("shooting_controls", {"linear", "constant"}, solver.shooting_controls);
   choice("hessian", {"auto", "exact", "limited_memory"}, solver.hessian);
@@ -727,18 +731,7 @@ PlannerSpec parsePlanner(const Context& ctx, const Field& field) {
   }
   planner.primitive_speed = map.optionalNumber("primitive_speed", Range::positive());
   const auto choice = [&](const char* key, const std::vector<std::string>& names,
-                          std::string& value) {
-    if (const std::optional<Field> found = map.find(key)) {
-      value = readEnum<std::string>(
-          ctx, *found,
-          [&](const std::string& text) {
-            return std::find(names.begin(), names.end(), text) != names.end()
-                       ? std::optional<std::string>(text)
-                       : std::nullopt;
-          },
-          names);
-    }
-  };
+                          std::string& value) { readChoiceInto(ctx, map, key, names, value); };
   choice("algorithm", {"arastar", "astar"}, planner.algorithm);
   choice("frame_anchor", {"map_center", "start", "midpoint"}, planner.frame_anchor);
   map.readNumberInto("initial_epsilon", Range::atLeast(1.0), planner.initial_epsilon);

@@ -10,13 +10,9 @@
 namespace terratraj::search {
 namespace {
 
+using detail::millisecondsSince;
 using detail::QueueEntry;
 using detail::SearchNode;
-
-double millisecondsSince(const std::chrono::steady_clock::time_point& start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 }  // namespace
 

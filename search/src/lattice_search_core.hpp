@@ -2,6 +2,7 @@
 // Shared machinery of the lattice searches (internal): the node table, the edge cache, the
 // priority-queue entries and path reconstruction.
 
+#include <chrono>
 #include <cstdint>
 #include <limits>
 #include <queue>
@@ -80,6 +81,12 @@ class EdgeCache {
   std::vector<Eigen::Vector2d> points_;
   HomotopySignature scratch_;
 };
+
+/// Milliseconds since `start`.
+inline double millisecondsSince(const std::chrono::steady_clock::time_point& start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
 
 /// The path from the start to `node` as steps.
 std::vector<LatticeStep> reconstructPath(const std::vector<SearchNode>& nodes, std::int32_t node);

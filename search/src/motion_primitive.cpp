@@ -3,17 +3,14 @@
 #include <cmath>
 #include <sstream>
 
+#include "terratraj/search/goal_region.hpp"
+
 namespace terratraj::search {
 namespace {
 
 constexpr double kTwoPi = 6.28318530717958647692;
 constexpr double kEndTolerance = 1e-6;      // snapped ends are exact up to rounding [m]
 constexpr double kHeadingTolerance = 2e-3;  // the solver's 1 mrad plus rounding [rad]
-
-double wrapToPi(double angle) {
-  angle = std::remainder(angle, kTwoPi);
-  return angle <= -kTwoPi / 2 ? angle + kTwoPi : angle;
-}
 
 std::string describe(const MotionPrimitive& p, std::size_t index) {
   std::ostringstream text;
@@ -87,12 +84,12 @@ std::optional<std::string> PrimitiveSet::checkAgainst(const LatticeSpec& wanted,
       const PrimitiveSample& first = p.samples.front();
       const PrimitiveSample& last = p.samples.back();
       if (std::hypot(first.x, first.y) > kEndTolerance ||
-          std::abs(wrapToPi(first.heading - wanted.headingAngle(k))) > kHeadingTolerance) {
+          std::abs(wrapAngle(first.heading - wanted.headingAngle(k))) > kHeadingTolerance) {
         return name + ": the first sample is not the start node and heading";
       }
       const Eigen::Vector2d end = p.offset.cast<double>() * wanted.resolution;
       if (std::hypot(last.x - end.x(), last.y - end.y()) > kEndTolerance ||
-          std::abs(wrapToPi(last.heading - wanted.headingAngle(p.end_heading))) >
+          std::abs(wrapAngle(last.heading - wanted.headingAngle(p.end_heading))) >
               kHeadingTolerance) {
         return name + ": the last sample is not the end node and heading";
       }

@@ -12,16 +12,12 @@
 namespace terratraj::search {
 namespace {
 
+using detail::millisecondsSince;
 using detail::QueueEntry;
 using detail::SearchNode;
 
 constexpr int kStateKeyBits = 42;
 constexpr std::size_t kConfirmEvery = 256;  // expansions between optimality checks
-
-double millisecondsSince(const std::chrono::steady_clock::time_point& start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 class FramesAdapter final : public detail::ReferenceFramesAdapter {
  public:

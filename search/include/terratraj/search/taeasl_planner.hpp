@@ -6,11 +6,13 @@
 // A search node is a (lattice state, homotopy class) pair; its class is the signature of the
 // frames its path crossed. One open list per class, created when a node first enters the class;
 // expansions alternate round-robin across the non-empty lists. A goal state reached in a class
-// is that class's solution candidate; nodes of a class costing at least its candidate are no
-// longer generated (the solution closes the class beyond its cost), but the class's list keeps
-// serving as a frontier from which paths branch into other classes. A node reached again with a
-// lower cost is re-opened, so when the lists run empty every class's candidate is the cheapest
-// path of that class on the lattice (signatures longer than max_signature_length excluded).
+// is that class's solution candidate (replaced only by a cheaper one). Where the paper closes a
+// class at its first solution, this implementation keeps every list as a frontier from which
+// paths branch into other classes and instead drops a node once its g + h reaches the cost of
+// the homotopy_classes-th cheapest candidate (it can improve none of the wanted classes). A node
+// reached again with a lower cost is re-opened, so when the lists run empty each class's
+// candidate is the cheapest path of that class on the lattice (signatures longer than
+// max_signature_length excluded). docs/lattice.md explains why.
 //
 // Proof of optimality within a class (heuristic weight 1): a candidate of cost C is final when
 // C <= min (g + h) over every open list (the heuristic is consistent, so no later path into the
