@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libceres-dev coinor-libipopt-dev libsundials-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libgdal-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev
+  python3 python3-numpy python3-matplotlib
 )
 
 missing=()

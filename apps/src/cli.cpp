@@ -11,9 +11,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "terratraj/apps/demo_command.hpp"
 #include "terratraj/apps/lut_commands.hpp"
 #include "terratraj/apps/plan_command.hpp"
 #include "terratraj/apps/problem_commands.hpp"
+#include "terratraj/apps/refine_command.hpp"
 #include "terratraj/apps/solve_command.hpp"
 #include "terratraj/apps/terrain_commands.hpp"
 #include "terratraj/terrain/input_error.hpp"
@@ -89,11 +91,13 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   DemoOptions demo;
   CLI::App* demo_command = app.add_subcommand(
       "demo",
-      "The main job on built-in defaults, no input files: generates a terrain and writes "
-      "it (GeoTIFF) and its summary (JSON) to the output folder.");
+      "The main job on built-in defaults, no input files: generates a forest, plans with TAEASL "
+      "(one route per homotopy class), refines every route, and writes the terrain, the "
+      "trajectories, report.json and the plots to the output folder.");
   demo_command->add_option("--out-dir", demo.out_dir, "output folder")->capture_default_str();
   addGeneratorOptions(*demo_command, demo.generator);
-  demo_command->add_flag("--json", json_flag, "print the summary as one JSON object");
+  demo_command->add_flag("!--no-plot", demo.plot, "skip the PNG figures");
+  demo_command->add_flag("--json", json_flag, "print the report as one JSON object");
 
   CLI::App* terrain_command = app.add_subcommand("terrain", "Inspect or make terrain.");
   terrain_command->require_subcommand(1);
@@ -139,6 +143,9 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   solve_command->add_option("--out", solve.out, "write the re-simulated trajectory (CSV)");
   solve_command->add_option("--guess", solve.guess,
                             "shooting / collocation: initial guess from a trajectory or x,y CSV");
+  solve_command->add_option("--plot", solve.plot,
+                            "draw the map, profiles and convergence (PNG; FILE, FILE-profiles, "
+                            "FILE-convergence)");
   solve_command->add_flag("--json", json_flag, "print the report as one JSON object");
 
   PlanOptions plan;
@@ -146,8 +153,10 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       "plan",
       "Global planning from the problem's start to its goal region: the kinodynamic PRM "
       "(prm, anytime), the state lattice with A* / ARA* (lattice) or the topology-aware lattice "
-      "(taeasl: one solution per homotopy class). Writes <out-dir>/solution_<k>.csv. Exit 0 "
-      "solved, 1 no solution in the time limit, 2 bad input.");
+      "(taeasl: one solution per homotopy class). Writes <out-dir>/solution_<k>.csv; with "
+      "--refine, also <out-dir>/refined_<k>.csv, each candidate refined into a locally optimal "
+      "trajectory in its homotopy class. Exit 0 solved (and with --refine at least one "
+      "refinement converged), 1 not, 2 bad input.");
   plan_command->add_option("PROBLEM", plan.problem, "problem YAML")->required();
   plan_command
       ->add_option("--planner", plan.planner, "overrides planner.kind (prm, lattice, taeasl)")
@@ -155,7 +164,31 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   plan_command->add_option("--time-limit", plan.time_limit_s, "overrides planner.time_limit_s [s]");
   plan_command->add_option("--seed", plan.seed, "overrides planner.seed");
   plan_command->add_option("--out-dir", plan.out_dir, "output folder")->capture_default_str();
+  plan_command->add_flag("--refine", plan.refine,
+                         "refine every solution (refine.method; docs/refinement.md)");
+  plan_command->add_option("--method", plan.method, "with --refine: overrides refine.method")
+      ->check(CLI::IsMember(search::refineMethodNames()));
+  plan_command->add_option("--plot", plan.plot,
+                           "draw the map, profiles and convergence (PNG; FILE, FILE-profiles, "
+                           "FILE-convergence)");
   plan_command->add_flag("--json", json_flag, "print the report as one JSON object");
+
+  RefineOptions refine;
+  CLI::App* refine_command = app.add_subcommand(
+      "refine",
+      "Refine a given path or trajectory (a planner's or another tool's CSV: the contract's "
+      "columns, or only x,y, or x,y,heading) into a locally optimal trajectory from the "
+      "problem's start to its goal, in the candidate's homotopy class. Exit 0 converged, 1 "
+      "not (the report says why), 2 bad input (including an unusable candidate).");
+  refine_command->add_option("PROBLEM", refine.problem, "problem YAML")->required();
+  refine_command->add_option("--candidate", refine.candidate, "the candidate CSV")->required();
+  refine_command->add_option("--method", refine.method, "overrides refine.method")
+      ->check(CLI::IsMember(search::refineMethodNames()));
+  refine_command->add_option("--out", refine.out, "write the refined trajectory (CSV)");
+  refine_command->add_option("--plot", refine.plot,
+                             "draw the map, profiles and convergence (PNG; FILE, FILE-profiles, "
+                             "FILE-convergence)");
+  refine_command->add_flag("--json", json_flag, "print the report as one JSON object");
 
   PrimitivesOptions primitives;
   CLI::App* primitives_command = app.add_subcommand(
@@ -250,6 +283,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (*check_command) return runCheck(check, context);
     if (*solve_command) return runSolve(solve, context);
     if (*plan_command) return runPlan(plan, context);
+    if (*refine_command) return runRefine(refine, context);
     if (*primitives_command) return runPrimitives(primitives, context);
     if (*lut_build_command) return runLutBuild(lut_build, context);
     if (*lut_check_command) return runLutCheck(lut_check, context);

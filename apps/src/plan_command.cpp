@@ -8,9 +8,12 @@
 #include <sstream>
 
 #include "terratraj/apps/cli.hpp"
+#include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
+#include "terratraj/apps/refine_command.hpp"
+#include "terratraj/apps/solve_command.hpp"
 #include "terratraj/apps/vehicle_factory.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
@@ -166,35 +169,6 @@ nlohmann::json planReportJson(const search::PlanResult& result, const PlanReport
   return json;
 }
 
-nlohmann::json planDemoProblem(const terrain::ElevationMap& map, const std::filesystem::path& csv,
-                               double time_limit_s, CommandContext& context) {
-  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
-  const std::unique_ptr<models::TerrainFollowingModel> vehicle =
-      makeTerrainFollowingModel(VehicleModelKind::kPoint, surface);
-  search::PlanningProblem problem(map, *vehicle);
-  const auto [start, goal] = terrain::standardStartGoal(map.geometry());
-  problem.start.position = start;
-  problem.goal.position = goal;
-  problem.limits.pitch_max = problem.limits.roll_max = 0.5;
-  PlanReportInfo info;
-  info.time_limit_s = time_limit_s;
-  if (const std::optional<std::string> error = problem.validate()) {
-    nlohmann::json report{{"status", "error"}, {"error", "demo plan: " + *error}};
-    return report;
-  }
-  context.log->info("demo: planning with the kinodynamic PRM for {} s (point vehicle)",
-                    time_limit_s);
-  search::KinodynamicPrm planner(problem);
-  const search::PlanResult result =
-      planner.solve(search::TerminationCondition::timeLimit(time_limit_s));
-  if (result.status == search::PlanStatus::kSolved) {
-    models::writeTrajectoryCsv(result.trajectory, csv);
-    info.files.push_back(csv);
-    info.checks.push_back(search::TrajectoryChecker(problem).check(result.trajectory));
-  }
-  return planReportJson(result, info);
-}
-
 namespace {
 
 // The lattice spacing: the problem's, else the multiple of the map cell nearest 0.5 m.
@@ -212,11 +186,11 @@ void checkGoalReachable(const ProblemSpec& problem, const search::LatticeGraph& 
   const search::LatticeState nearest{static_cast<int>(std::lround(cells.x())),
                                      static_cast<int>(std::lround(cells.y())), 0};
   if ((graph.position(nearest) - goal.position).norm() > goal.position_tolerance) {
-    throw InputError(problem.source_file.string() + ": planner.goal_position_tolerance_m: " +
-                     formatNumber(goal.position_tolerance) +
-                     " m holds no lattice position (spacing " + formatNumber(lattice.resolution) +
-                     " m from the start): use at least " +
-                     formatNumber(std::ceil(lattice.resolution * 0.7072 * 100.0) / 100.0) + " m");
+    throw InputError(
+        problem.source_file.string() + ": planner.goal_position_tolerance_m: " +
+        formatNumber(goal.position_tolerance) + " m holds no lattice position (spacing " +
+        formatNumber(lattice.resolution) + " m from the start): use at least " +
+        formatNumber(std::ceil(lattice.resolution * std::sqrt(0.5) * 100.0) / 100.0) + " m");
   }
   const double heading_gap = std::abs(
       search::wrapAngle(goal.heading - lattice.headingAngle(lattice.nearestHeading(goal.heading))));
@@ -346,27 +320,8 @@ search::PlanResult runLatticePlanner(const ProblemSpec& problem,
 
 }  // namespace
 
-int runPlan(const PlanOptions& options, CommandContext& context) {
-  ProblemSpec problem = loadProblem(options.problem);
-  if (options.planner) {
-    const std::optional<PlannerKind> kind = parsePlannerKind(*options.planner);
-    if (!kind) throw InputError("--planner: unknown planner '" + *options.planner + "'");
-    problem.planner.kind = *kind;
-  }
-  if (options.time_limit_s) {
-    if (!std::isfinite(*options.time_limit_s) || *options.time_limit_s < 0.0) {
-      throw InputError("--time-limit: must be a finite number >= 0 s (got " +
-                       formatNumber(*options.time_limit_s) + ")");
-    }
-    problem.planner.time_limit_s = *options.time_limit_s;
-  }
-  if (options.seed) problem.planner.seed = *options.seed;
-
-  const ProblemScene scene(problem, context);
-  const terrain::ElevationMap& map = scene.map();
-  const models::TerrainFollowingModel& vehicle = scene.vehicle();
-
-  search::PlanningProblem query(map, vehicle);
+search::PlanningProblem planningProblem(const ProblemSpec& problem, const ProblemScene& scene) {
+  search::PlanningProblem query(scene.map(), scene.vehicle());
   query.limits = problem.vehicle.limits;
   query.start = startState(problem);
   query.goal = goalRegion(problem);
@@ -375,6 +330,181 @@ int runPlan(const PlanOptions& options, CommandContext& context) {
   if (const std::optional<std::string> error = query.validate()) {
     throw InputError(problem.source_file.string() + ": " + *error);
   }
+  return query;
+}
+
+namespace {
+
+// The candidates of a plan: every solution, or the PRM's single trajectory.
+std::vector<const models::Trajectory*> candidatesOf(const search::PlanResult& result) {
+  std::vector<const models::Trajectory*> candidates;
+  if (result.status != search::PlanStatus::kSolved) return candidates;
+  if (result.solutions.empty()) {
+    candidates.push_back(&result.trajectory);
+  } else {
+    for (const search::PlanSolution& s : result.solutions) candidates.push_back(&s.trajectory);
+  }
+  return candidates;
+}
+
+// The refinement of every candidate, written to refined_<k>.csv, into the report.
+struct RefinedCandidates {
+  std::vector<search::RefinementResult> results;
+  std::vector<std::optional<std::filesystem::path>> files;
+  search::ReferenceFrames frames;
+  int converged = 0;
+};
+
+RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScene& scene,
+                                   const search::PlanningProblem& query,
+                                   const search::PlanResult& result, const PlanOptions& options,
+                                   nlohmann::json& report, CommandContext& context) {
+  RefinedCandidates refined;
+  const search::RefinementOptions settings = refinementOptions(problem, options.method);
+  ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem);
+  bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable()};
+  refined.frames = problemReferenceFrames(problem, query);
+  const search::CandidateRefiner refiner(query, bvp, refined.frames, settings);
+  const std::vector<const models::Trajectory*> candidates = candidatesOf(result);
+  double ratio_sum = 0.0;
+  int ratios = 0, kept = 0;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    context.log->info("refining solution {} of {}", k, candidates.size());
+    search::RefinementResult r = refiner.refine(*candidates[k]);
+    std::optional<std::filesystem::path> file;
+    if (r.verified.ok) {
+      file = options.out_dir / ("refined_" + std::to_string(k) + ".csv");
+      models::writeTrajectoryCsv(r.verified.trajectory, *file);
+    }
+    context.log->info("solution {}: {} ({}, {} ms){}{}", k, ocp::solveStatusName(r.status),
+                      search::refineMethodName(r.method), r.solve_time_ms,
+                      r.reason.empty() ? "" : ": ", r.reason);
+    nlohmann::json& solution = report["solutions"][k];
+    if (r.candidate_figures) {
+      solution["cost"] = r.candidate_figures->cost;
+      solution["max_abs_pitch_rad"] = r.candidate_figures->max_abs_pitch;
+      solution["max_abs_roll_rad"] = r.candidate_figures->max_abs_roll;
+      solution["min_clearance_m"] = r.candidate_figures->min_clearance_m;
+      solution["homotopy_frames"] = r.candidate_figures->homotopy;
+    }
+    solution["refined"] = refinedSolutionJson(r, file);
+    if (r.status == ocp::SolveStatus::kConverged) ++refined.converged;
+    if (r.homotopy_kept) ++kept;
+    if (std::isfinite(r.costRatio()) && r.status == ocp::SolveStatus::kConverged) {
+      ratio_sum += r.costRatio();
+      ++ratios;
+    }
+    refined.results.push_back(std::move(r));
+    refined.files.push_back(file);
+  }
+  report["refine"] = {
+      {"method", search::refineMethodName(settings.method)},
+      {"interval_length_m", settings.interval_length_m},
+      {"min_intervals", settings.min_intervals},
+      {"max_intervals", settings.max_intervals},
+      {"min_clearance_m", settings.min_clearance_m},
+      {"max_iterations", settings.transcription.max_iterations},
+      {"time_limit_s", settings.transcription.time_limit_s
+                           ? nlohmann::json(*settings.transcription.time_limit_s)
+                           : nlohmann::json(nullptr)},
+      {"candidates", candidates.size()},
+      {"converged", refined.converged},
+      {"homotopy_kept", kept},
+      {"mean_cost_ratio",
+       ratios > 0 ? nlohmann::json(ratio_sum / ratios) : nlohmann::json(nullptr)},
+  };
+  return refined;
+}
+
+// The figures of a plan (and its refinements).
+PlotOutcome plotPlan(const ProblemSpec& problem, const ProblemScene& scene,
+                     const search::PlanResult& result, const PlanReportInfo& info,
+                     const RefinedCandidates* refined, const std::filesystem::path& png,
+                     CommandContext& context) {
+  PlotRequest plot;
+  plot.title = std::string("plan (") + info.planner + ")" + (refined ? " and refine" : "");
+  plot.limits = problem.vehicle.limits;
+  plot.start = PlotPose{problem.start.x, problem.start.y, problem.start.heading};
+  plot.goal = PlotPose{problem.goal.x, problem.goal.y, problem.goal.heading};
+  plot.tolerance_position_m = problem.solver.tolerance_position_m;
+  for (std::size_t k = 0; k < info.files.size(); ++k) {
+    std::string label = "candidate " + std::to_string(k);
+    if (k < result.solutions.size() && !result.solutions[k].homotopy.empty()) {
+      label += " '" + result.solutions[k].homotopy + "'";
+    }
+    plot.trajectories.push_back({label, info.files[k], refined != nullptr, static_cast<int>(k)});
+  }
+  if (refined) {
+    for (std::size_t k = 0; k < refined->results.size(); ++k) {
+      const search::RefinementResult& r = refined->results[k];
+      if (refined->files[k]) {
+        plot.trajectories.push_back(
+            {"refined " + std::to_string(k) + " (" + ocp::solveStatusName(r.status) + ")",
+             *refined->files[k], false, static_cast<int>(k)});
+      }
+      plot.histories.push_back(
+          {"refine " + std::to_string(k) + " (" + search::refineMethodName(r.method) + ")",
+           r.history, static_cast<int>(k)});
+    }
+    for (std::size_t k = 0; k < refined->frames.size(); ++k) {
+      plot.frames.push_back({search::HomotopySignature::frameName(static_cast<int>(k)),
+                             refined->frames.frames()[k].start, refined->frames.frames()[k].end});
+    }
+  } else if (const auto it = info.extra.find("taeasl"); it != info.extra.end()) {
+    for (const nlohmann::json& f : (*it)["frames"]) {
+      plot.frames.push_back({f["name"].get<std::string>(),
+                             {f["start"][0].get<double>(), f["start"][1].get<double>()},
+                             {f["end"][0].get<double>(), f["end"][1].get<double>()}});
+    }
+  }
+  return writePlots(plot, scene.map(), png, context);
+}
+
+std::string planSummary(const search::PlanResult& result, const PlanReportInfo& info,
+                        const RefinedCandidates* refined) {
+  std::ostringstream out;
+  out << search::planStatusName(result.status) << " (" << info.planner << ", "
+      << result.planning_time_ms << " ms, " << result.nodes << " nodes)";
+  if (!result.reason.empty()) out << ": " << result.reason;
+  out << '\n';
+  if (result.status != search::PlanStatus::kSolved) return out.str();
+  out << "  first solution  " << *result.first_solution_ms << " ms, cost "
+      << result.first_solution_cost_s << " s\n";
+  for (std::size_t k = 0; k < info.files.size(); ++k) {
+    const bool has = k < result.solutions.size();
+    const double cost = has ? result.solutions[k].cost_s : result.best_cost_s;
+    const double length = has ? result.solutions[k].length_m : result.length_m;
+    out << "  solution " << k << "      cost " << cost << " s, length " << length << " m";
+    if (has && !result.solutions[k].homotopy.empty()) {
+      out << ", class " << result.solutions[k].homotopy;
+    }
+    out << ", re-check " << (info.checks[k].ok() ? "ok" : "VIOLATED") << ", "
+        << info.files[k].string() << '\n';
+    if (refined && k < refined->results.size()) {
+      const search::RefinementResult& r = refined->results[k];
+      out << "    refined       " << ocp::solveStatusName(r.status) << " by "
+          << search::refineMethodName(r.method) << " in " << r.solve_time_ms << " ms";
+      if (r.refined_figures) {
+        out << ": cost " << r.refined_figures->duration_s << " s (x" << r.costRatio()
+            << "), length " << r.refined_figures->length_m << " m, class '"
+            << r.refined_figures->homotopy << "' " << (r.homotopy_kept ? "kept" : "CHANGED");
+      }
+      if (!r.reason.empty()) out << "; " << r.reason;
+      if (refined->files[k]) out << ", " << refined->files[k]->string();
+      out << '\n';
+    }
+  }
+  return out.str();
+}
+
+}  // namespace
+
+PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandContext& context) {
+  const ProblemScene scene(problem, context);
+  const models::TerrainFollowingModel& vehicle = scene.vehicle();
+  const search::PlanningProblem query = planningProblem(problem, scene);
+  // Bad refine settings fail before planning.
+  if (options.refine) (void)refinementOptions(problem, options.method);
 
   PlanReportInfo info;
   info.planner = plannerKindName(problem.planner.kind);
@@ -393,32 +523,47 @@ int runPlan(const PlanOptions& options, CommandContext& context) {
   }
   writeSolutions(result, query, options.out_dir, info, context);
 
-  const nlohmann::json report = planReportJson(result, info);
-  if (context.json) {
-    context.out << report.dump(2) << '\n';
-  } else {
-    context.out << search::planStatusName(result.status) << " (" << info.planner << ", "
-                << result.planning_time_ms << " ms, " << result.nodes << " nodes)";
-    if (!result.reason.empty()) context.out << ": " << result.reason;
-    context.out << '\n';
-    if (result.status == search::PlanStatus::kSolved) {
-      context.out << "  first solution  " << *result.first_solution_ms << " ms, cost "
-                  << result.first_solution_cost_s << " s\n";
-      for (std::size_t k = 0; k < info.files.size(); ++k) {
-        const bool has = k < result.solutions.size();
-        const double cost = has ? result.solutions[k].cost_s : result.best_cost_s;
-        const double length = has ? result.solutions[k].length_m : result.length_m;
-        context.out << "  solution " << k << "      cost " << cost << " s, length " << length
-                    << " m";
-        if (has && !result.solutions[k].homotopy.empty()) {
-          context.out << ", class " << result.solutions[k].homotopy;
-        }
-        context.out << ", re-check " << (info.checks[k].ok() ? "ok" : "VIOLATED") << ", "
-                    << info.files[k].string() << '\n';
-      }
-    }
+  PlanRun run;
+  run.report = planReportJson(result, info);
+  std::optional<RefinedCandidates> refined;
+  if (options.refine && result.status == search::PlanStatus::kSolved) {
+    refined = refineCandidates(problem, scene, query, result, options, run.report, context);
   }
-  return result.status == search::PlanStatus::kSolved ? kExitSuccess : kExitNotSolved;
+  if (options.plot) {
+    createDirectories(options.plot->has_parent_path() ? options.plot->parent_path()
+                                                      : std::filesystem::path("."));
+    run.report["plots"] = plotPlan(problem, scene, result, info, refined ? &*refined : nullptr,
+                                   *options.plot, context)
+                              .toJson();
+  }
+  run.summary = planSummary(result, info, refined ? &*refined : nullptr);
+  const bool solved = result.status == search::PlanStatus::kSolved;
+  run.exit_status = solved && (!refined || refined->converged > 0) ? kExitSuccess : kExitNotSolved;
+  return run;
+}
+
+int runPlan(const PlanOptions& options, CommandContext& context) {
+  ProblemSpec problem = loadProblem(options.problem);
+  if (options.planner) {
+    const std::optional<PlannerKind> kind = parsePlannerKind(*options.planner);
+    if (!kind) throw InputError("--planner: unknown planner '" + *options.planner + "'");
+    problem.planner.kind = *kind;
+  }
+  if (options.time_limit_s) {
+    if (!std::isfinite(*options.time_limit_s) || *options.time_limit_s < 0.0) {
+      throw InputError("--time-limit: must be a finite number >= 0 s (got " +
+                       formatNumber(*options.time_limit_s) + ")");
+    }
+    problem.planner.time_limit_s = *options.time_limit_s;
+  }
+  if (options.seed) problem.planner.seed = *options.seed;
+  const PlanRun run = executePlan(problem, options, context);
+  if (context.json) {
+    context.out << run.report.dump(2) << '\n';
+  } else {
+    context.out << run.summary;
+  }
+  return run.exit_status;
 }
 
 int runPrimitives(const PrimitivesOptions& options, CommandContext& context) {

@@ -745,6 +745,37 @@ PlannerSpec parsePlanner(const Context& ctx, const Field& field) {
   return planner;
 }
 
+// `refine`.
+RefineSpec parseRefine(const Context& ctx, const Field& field) {
+  const MapReader map(
+      ctx, field,
+      {"method", "interval_length_m", "min_intervals", "max_intervals", "min_clearance_m",
+       "limit_margin", "speed_margin", "control_effort", "max_iterations", "time_limit_s",
+       "parametric_max_length_m", "parametric_min_clearance_m"});
+  RefineSpec refine;
+  readChoiceInto(ctx, map, "method", {"auto", "collocation", "shooting", "newton", "ipopt"},
+                 refine.method);
+  map.readNumberInto("interval_length_m", Range::positive(), refine.interval_length_m);
+  map.readIntInto("min_intervals", kMinIntervals, kMaxIntervals, refine.min_intervals);
+  map.readIntInto("max_intervals", kMinIntervals, kMaxIntervals, refine.max_intervals);
+  if (refine.max_intervals < refine.min_intervals) {
+    map.fail("max_intervals", "must be >= min_intervals (" + std::to_string(refine.min_intervals) +
+                                  "), got " + std::to_string(refine.max_intervals));
+  }
+  map.readNumberInto("min_clearance_m", Range::nonNegative(), refine.min_clearance_m);
+  const Range margin{Range::Bound::kClosed, 0.0, Range::Bound::kOpen, 0.5, ""};
+  map.readNumberInto("limit_margin", margin, refine.limit_margin);
+  map.readNumberInto("speed_margin", margin, refine.speed_margin);
+  map.readNumberInto("control_effort", Range::nonNegative(), refine.control_effort);
+  map.readIntInto("max_iterations", kMinIterations, kMaxIterations, refine.max_iterations);
+  refine.time_limit_s = map.optionalNumber("time_limit_s", Range::nonNegative());
+  map.readNumberInto("parametric_max_length_m", Range::nonNegative(),
+                     refine.parametric_max_length_m);
+  map.readNumberInto("parametric_min_clearance_m", Range::nonNegative(),
+                     refine.parametric_min_clearance_m);
+  return refine;
+}
+
 // The single YAML document of the text; throws InputError for malformed YAML, no document, or
 // more than one.
 YAML::Node loadDocument(const Context& ctx, const std::string& yaml_text) {
@@ -771,11 +802,12 @@ ProblemSpec parseRoot(const Context& ctx, const YAML::Node& root) {
   if (!root.IsMap()) {
     failAt(ctx, root_field,
            "the top level must be a map of sections (terrain, vehicle, start, goal, cost, "
-           "solver, planner), got " +
+           "solver, planner, refine), got " +
                describeNode(root));
   }
-  const MapReader map(ctx, root_field,
-                      {"terrain", "vehicle", "start", "goal", "cost", "solver", "planner"});
+  const MapReader map(
+      ctx, root_field,
+      {"terrain", "vehicle", "start", "goal", "cost", "solver", "planner", "refine"});
   ProblemSpec problem;
   problem.source_file = ctx.displayName();
   problem.terrain = parseTerrain(ctx, map.require("terrain"));
@@ -792,6 +824,9 @@ ProblemSpec parseRoot(const Context& ctx, const YAML::Node& root) {
   }
   if (const std::optional<Field> planner = map.find("planner")) {
     problem.planner = parsePlanner(ctx, *planner);
+  }
+  if (const std::optional<Field> refine = map.find("refine")) {
+    problem.refine = parseRefine(ctx, *refine);
   }
   return problem;
 }

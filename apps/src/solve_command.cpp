@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "terratraj/apps/cli.hpp"
+#include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
@@ -41,7 +42,8 @@ nlohmann::json number(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
-// The report's figures that come from the independent re-simulation (null when it failed).
+}  // namespace
+
 nlohmann::json verifiedTrajectoryJson(const ocp::VerifiedTrajectory& v) {
   return {
       {"final_time_s", v.ok ? number(v.final_time) : nullptr},
@@ -60,6 +62,8 @@ nlohmann::json verifiedTrajectoryJson(const ocp::VerifiedTrajectory& v) {
       {"verified", v.ok},
   };
 }
+
+namespace {
 
 // The human-readable lines of a re-simulated trajectory.
 void printVerifiedTrajectory(std::ostream& out, const ocp::VerifiedTrajectory& v) {
@@ -222,29 +226,36 @@ nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,
   return json;
 }
 
-nlohmann::json solveDemoProblem(const terrain::ElevationMap& map, const std::filesystem::path& csv,
-                                CommandContext& context) {
-  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
-  const std::unique_ptr<models::TerrainFollowingModel> vehicle =
-      makeTerrainFollowingModel(VehicleModelKind::kRockerBogie, surface);
-  ocp::BoundaryValueProblem bvp;
-  const double x0 = 0.15 * map.geometry().width(), y0 = 0.4 * map.geometry().height();
-  bvp.start = {x0, y0, 0.0, 0.5, 0.0};
-  bvp.goal = {x0 + 6.0, y0 + 1.5, 0.3, 0.5, 0.0};
-  bvp.cost = {ocp::CostKind::kSlopeDwell, 1.0};
-  bvp.limits.kappa_max = 2.0;
-  bvp.limits.sigma_max = 2.0;
-  bvp.limits.pitch_max = bvp.limits.roll_max = 0.5;
-  const ocp::BoundaryValueOptions options;
-  context.log->info("demo: solving a boundary-value problem with newton (rocker_bogie)");
-  const ocp::BoundaryValueSolution solution = ocp::solveBoundaryValue(*vehicle, bvp, options, &map);
-  nlohmann::json report = solveReportJson(solution, options);
-  if (solution.verified.ok) {
-    models::writeTrajectoryCsv(solution.verified.trajectory, csv);
-    report["file"] = csv.string();
+namespace {
+
+// `--plot` of solve: the re-simulated trajectory on the map, its profiles and the iterations.
+nlohmann::json plotSolve(const SolveOptions& options, const ProblemSpec& problem,
+                         const terrain::ElevationMap& map, const ocp::VerifiedTrajectory& verified,
+                         const std::vector<ocp::IterationRecord>& history,
+                         const std::string& method, CommandContext& context) {
+  const std::filesystem::path& png = *options.plot;
+  if (png.has_parent_path()) {
+    std::error_code error;
+    std::filesystem::create_directories(png.parent_path(), error);
+    if (error) throw InputError("--plot: cannot create '" + png.parent_path().string() + "'");
   }
-  return report;
+  PlotRequest plot;
+  plot.title = "solve (" + method + ")";
+  plot.limits = problem.vehicle.limits;
+  plot.start = PlotPose{problem.start.x, problem.start.y, problem.start.heading};
+  plot.goal = PlotPose{problem.goal.x, problem.goal.y, problem.goal.heading};
+  plot.tolerance_position_m = problem.solver.tolerance_position_m;
+  if (verified.ok) {
+    std::filesystem::path csv =
+        options.out ? *options.out : png.parent_path() / (png.stem().string() + "-trajectory.csv");
+    if (!options.out) models::writeTrajectoryCsv(verified.trajectory, csv);
+    plot.trajectories.push_back({method, csv, false, 0});
+  }
+  plot.histories.push_back({method, history, 0});
+  return writePlots(plot, map, png, context).toJson();
 }
+
+}  // namespace
 
 namespace {
 
@@ -308,8 +319,12 @@ int runTranscription(const SolveOptions& options, const ProblemSpec& problem,
     }
   }
   if (options.out && verified.ok) models::writeTrajectoryCsv(verified.trajectory, *options.out);
-  const nlohmann::json report =
+  nlohmann::json report =
       transcriptionReportJson(solution, verified, transcription_options, source);
+  if (options.plot) {
+    report["plots"] = plotSolve(options, problem, map, verified, result.history,
+                                report["method"].get<std::string>(), context);
+  }
   if (context.json) {
     context.out << report.dump(2) << '\n';
   } else {
@@ -358,7 +373,11 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
   if (options.out && solution.verified.ok) {
     models::writeTrajectoryCsv(solution.verified.trajectory, *options.out);
   }
-  const nlohmann::json report = solveReportJson(solution, solve_options);
+  nlohmann::json report = solveReportJson(solution, solve_options);
+  if (options.plot) {
+    report["plots"] = plotSolve(options, problem, map, solution.verified, solution.solver.history,
+                                ocp::boundaryValueMethodName(solve_options.method), context);
+  }
   if (context.json) {
     context.out << report.dump(2) << '\n';
   } else {

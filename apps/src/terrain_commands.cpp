@@ -1,8 +1,5 @@
 #include "terratraj/apps/terrain_commands.hpp"
 
-#include "terratraj/apps/plan_command.hpp"
-#include "terratraj/apps/solve_command.hpp"
-
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -16,19 +13,10 @@
 namespace terratraj::apps {
 namespace {
 
-// Wall-clock budget of the demo's PRM plan [s].
-constexpr double kDemoPlanTimeLimitS = 0.5;
-
 constexpr double kRadToDeg = 57.29577951308232;
 
 nlohmann::json extentJson(double x_min, double y_min, double x_max, double y_max) {
   return {{"x_min", x_min}, {"y_min", y_min}, {"x_max", x_max}, {"y_max", y_max}};
-}
-
-void writeJsonFile(const nlohmann::json& json, const std::filesystem::path& path) {
-  std::ofstream file(path);
-  file << json.dump(2) << '\n';
-  if (!file) throw InputError(path.string() + ": cannot be written");
 }
 
 void createDirectories(const std::filesystem::path& dir) {
@@ -119,62 +107,6 @@ int runTerrainGenerate(const TerrainGenerateOptions& options, CommandContext& co
     context.out << json.dump(2) << '\n';
   } else {
     context.out << "wrote " << options.out.string() << '\n' << terrainStatisticsText(stats);
-  }
-  return kExitSuccess;
-}
-
-int runDemo(const DemoOptions& options, CommandContext& context) {
-  createDirectories(options.out_dir);
-  const std::filesystem::path tif = options.out_dir / "terrain.tif";
-  const std::filesystem::path summary_file = options.out_dir / "summary.json";
-  context.log->info("demo: generating '{}' terrain, {} x {} cells of {} m, seed {}",
-                    terrain::terrainKindName(options.generator.kind), options.generator.cols,
-                    options.generator.rows, options.generator.cell, options.generator.seed);
-  const terrain::ElevationMap map = terrain::generateTerrain(options.generator);
-  terrain::saveGeoTiff(map, tif);
-  context.log->info("demo: wrote {}", tif.string());
-  const terrain::TerrainStatistics stats = terrain::computeTerrainStatistics(map);
-  nlohmann::json summary{
-      {"status", "ok"},
-      {"terrain",
-       {{"kind", terrain::terrainKindName(options.generator.kind)},
-        {"seed", options.generator.seed},
-        {"file", tif.string()},
-        {"statistics", terrainStatisticsJson(stats)}}},
-  };
-  const std::filesystem::path solve_file = options.out_dir / "solve.csv";
-  summary["solve"] = solveDemoProblem(map, solve_file, context);
-  const std::filesystem::path plan_file = options.out_dir / "plan.csv";
-  summary["plan"] = planDemoProblem(map, plan_file, kDemoPlanTimeLimitS, context);
-  writeJsonFile(summary, summary_file);
-  context.log->info("demo: wrote {}", summary_file.string());
-  if (context.json) {
-    context.out << summary.dump(2) << '\n';
-  } else {
-    context.out << "terratraj demo: generated terrain '"
-                << terrain::terrainKindName(options.generator.kind) << "' (seed "
-                << options.generator.seed << ")\n"
-                << terrainStatisticsText(stats);
-    const nlohmann::json& solve = summary["solve"];
-    context.out << "solve (newton, rocker_bogie, 6.2 m, slope dwell alpha 1): "
-                << solve["status"].get<std::string>() << " in " << solve["iterations"]
-                << " iterations, " << solve["solve_time_ms"].get<double>() << " ms";
-    if (solve["final_time_s"].is_number()) {
-      context.out << "; t_f " << solve["final_time_s"].get<double>() << " s, terminal error "
-                  << solve["terminal_error"]["position_m"].get<double>() << " m";
-    }
-    const nlohmann::json& plan = summary["plan"];
-    context.out << "\nplan (prm, point vehicle, " << kDemoPlanTimeLimitS
-                << " s): " << plan["status"].get<std::string>();
-    if (plan["best_cost_s"].is_number()) {
-      context.out << "; first solution " << plan["first_solution_ms"].get<double>()
-                  << " ms, best cost " << plan["best_cost_s"].get<double>() << " s, "
-                  << plan["nodes"] << " nodes";
-    }
-    context.out << "\n  files      " << tif.string() << ", " << summary_file.string() << ", "
-                << solve_file.string();
-    if (plan["best_cost_s"].is_number()) context.out << ", " << plan_file.string();
-    context.out << '\n';
   }
   return kExitSuccess;
 }

@@ -109,7 +109,11 @@ class IpoptTranscription final : public Ipopt::TNLP {
     x_scaling[nlp_.finalTimeIndex()] = obj_scaling;
     use_g_scaling = true;
     std::fill(g_scaling, g_scaling + m, 1.0);
-    for (int r = 0; r < nlp_.defectRowCount(); ++r) g_scaling[r] = state_scale[r % kStateSize];
+    for (int r = 0; r < nlp_.controlRowStart(); ++r) g_scaling[r] = state_scale[r % kStateSize];
+    for (int r = nlp_.controlRowStart(); r < nlp_.defectRowCount(); ++r) {
+      g_scaling[r] =
+          (r - nlp_.controlRowStart()) % kControlSize == 0 ? 1.0 / std::max(l.a_max, 1e-3) : 1.0;
+    }
     return true;
   }
 
@@ -508,6 +512,7 @@ TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingMod
     TranscriptionLayout layout;
     layout.scheme = options.scheme;
     layout.shooting_controls = options.shooting_controls;
+    layout.linear_controls = options.linear_controls;
     layout.mesh = uniformMesh(options.intervals);
     // A twentieth of a cell: see TranscriptionLayout::hessian_position_step.
     layout.hessian_position_step = 0.05 * vehicle.surface().map().geometry().cell;

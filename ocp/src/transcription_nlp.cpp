@@ -102,6 +102,9 @@ int TranscriptionNlp::nodePoint(int node) const {
 }
 
 ConstraintRow TranscriptionNlp::row(int row) const {
+  if (row >= control_row_start_ && row < defect_rows_) {
+    return {true, (row - control_row_start_) / kControlSize, "control_linearity"};
+  }
   if (row < defect_rows_) {
     const int block = row / kStateSize;
     const int interval = layout_.scheme == TranscriptionScheme::kHermiteSimpson ? block / 2 : block;
@@ -166,6 +169,19 @@ void TranscriptionNlp::buildStructure() {
       jac_cols_.push_back(tf);
     }
     row += kStateSize;
+  }
+  control_row_start_ = row;
+  control_jac_start_ = static_cast<int>(jac_rows_.size());
+  if (hs && layout_.linear_controls) {
+    for (int k = 0; k < n; ++k) {
+      for (int j = kStateSize; j < kPointSize; ++j) {
+        for (int p : {2 * k, 2 * k + 1, 2 * k + 2}) {
+          jac_rows_.push_back(row);
+          jac_cols_.push_back(kPointSize * p + j);
+        }
+        ++row;
+      }
+    }
   }
   defect_rows_ = row;
   const int count = model_->constraintCount();
@@ -234,6 +250,18 @@ bool TranscriptionNlp::evaluateCollocation(const Eigen::Map<const Eigen::VectorX
     }
     for (int i = 0; i < kStateSize; ++i) jac_values_(entry++) = d_tf(i);
     constraints_.segment<kStateSize>(block.row) = defect;
+  }
+  // Control linearity: u_m - (u_a + u_b) / 2 = 0 (constant Jacobian, no curvature).
+  int entry = control_jac_start_;
+  for (int row = control_row_start_; row < defect_rows_; ++row) {
+    const int k = (row - control_row_start_) / kControlSize;
+    const int j = kStateSize + (row - control_row_start_) % kControlSize;
+    const double ua = x(kPointSize * (2 * k) + j), um = x(kPointSize * (2 * k + 1) + j),
+                 ub = x(kPointSize * (2 * k + 2) + j);
+    constraints_(row) = um - 0.5 * (ua + ub);
+    jac_values_(entry++) = -0.5;
+    jac_values_(entry++) = 1.0;
+    jac_values_(entry++) = -0.5;
   }
   return true;
 }

@@ -206,10 +206,12 @@ double LatticeGraph::heading(const LatticeState& s) const {
 }
 
 bool LatticeGraph::inGoal(const LatticeState& s) const {
-  const GoalRegion& goal = problem_->goal;
-  if ((position(s) - goal.position).norm() > goal.position_tolerance) return false;
-  return goal.heading_tolerance >= 3.14159265358979 ||
-         std::abs(wrapAngle(heading(s) - goal.heading)) <= goal.heading_tolerance;
+  // The speed profile brakes to the goal's speed, so only position and heading matter here.
+  PlannerState state;
+  state.position = position(s);
+  state.heading = heading(s);
+  state.v = problem_->goal.v;
+  return problem_->goal.contains(state);
 }
 
 double LatticeGraph::heuristic(const LatticeState& s) const {

@@ -98,13 +98,7 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) const {
         if (!std::isfinite(edge.cost)) continue;
         const double g2 = g + edge.cost;
         if (g2 >= best_goal_g) continue;  // cannot lead to a better path (h >= 0)
-        const auto [slot, inserted] = index.insert(graph.key(t));
-        if (inserted) {
-          *slot = static_cast<std::int32_t>(nodes.size());
-          nodes.push_back({});
-          nodes.back().state = t;
-        }
-        const std::int32_t next = *slot;
+        const std::int32_t next = detail::findOrAddNode(index, nodes, graph.key(t), t);
         SearchNode& m = nodes[next];
         if (!(g2 < m.g)) continue;
         m.g = g2;

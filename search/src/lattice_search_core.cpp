@@ -24,7 +24,7 @@ const CachedEdge& EdgeCache::get(const LatticeState& s, std::uint64_t state_key,
   entry->cost = evaluation.cost;
   if (frames != nullptr) {
     graph_->edgePoints(s, e, points_);
-    scratch_ = HomotopySignature();
+    scratch_.clear();  // keeps its capacity
     frames->crossings(points_, scratch_);
     entry->crossings_begin = static_cast<std::uint32_t>(crossings_.size());
     entry->crossings_count = static_cast<std::uint16_t>(scratch_.size());

@@ -88,6 +88,20 @@ inline double millisecondsSince(const std::chrono::steady_clock::time_point& sta
       .count();
 }
 
+/// The node of `key` (state `state` in class `klass`), appended to `nodes` if new.
+inline std::int32_t findOrAddNode(FlatHashMap<std::int32_t>& index, std::vector<SearchNode>& nodes,
+                                  std::uint64_t key, const LatticeState& state,
+                                  std::int32_t klass = 0) {
+  const auto [slot, inserted] = index.insert(key);
+  if (inserted) {
+    *slot = static_cast<std::int32_t>(nodes.size());
+    nodes.push_back({});
+    nodes.back().state = state;
+    nodes.back().klass = klass;
+  }
+  return *slot;
+}
+
 /// The path from the start to `node` as steps.
 std::vector<LatticeStep> reconstructPath(const std::vector<SearchNode>& nodes, std::int32_t node);
 

@@ -249,14 +249,8 @@ PlanResult TaeaslPlanner::solve(TerminationCondition termination) const {
       if (goal ? g2 >= classes[next_class].best_goal_g : g2 + graph.heuristic(t) >= bound) {
         continue;
       }
-      const auto [slot, inserted] = index.insert(nodeKey(t, next_class));
-      if (inserted) {
-        *slot = static_cast<std::int32_t>(nodes.size());
-        nodes.push_back({});
-        nodes.back().state = t;
-        nodes.back().klass = next_class;
-      }
-      const std::int32_t next = *slot;
+      const std::int32_t next =
+          detail::findOrAddNode(index, nodes, nodeKey(t, next_class), t, next_class);
       SearchNode& m = nodes[next];
       if (!(g2 < m.g)) continue;
       m.g = g2;

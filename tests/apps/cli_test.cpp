@@ -131,18 +131,6 @@ TEST_F(CliTest, TerrainGenerateWritesEveryKind) {
   EXPECT_THAT(unwritable.err, HasSubstr("plain_file"));
 }
 
-TEST_F(CliTest, DemoWritesTerrainAndSummary) {
-  const CliResult r =
-      run({"demo", "--out-dir", path("demo"), "--rows", "96", "--cols", "96", "--json"});
-  ASSERT_EQ(r.status, kExitSuccess) << r.err;
-  const nlohmann::json json = nlohmann::json::parse(r.out);
-  EXPECT_EQ(json["status"], "ok");
-  EXPECT_TRUE(fs::exists(path("demo/terrain.tif")));
-  std::ifstream summary(path("demo/summary.json"));
-  EXPECT_EQ(nlohmann::json::parse(summary), json);
-  EXPECT_EQ(terrain::loadElevationMap(path("demo/terrain.tif")).geometry().rows, 96);
-}
-
 TEST_F(CliTest, CheckReadsAProblemAndItsTerrain) {
   write("problem.yaml",
         "terrain:\n  generate: {kind: obstacles, rows: 128, cols: 128, cell: 0.25, seed: 1}\n"

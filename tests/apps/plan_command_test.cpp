@@ -213,20 +213,6 @@ TEST(PlanProblemKeys, GoalTolerancesAreParsed) {
   EXPECT_DOUBLE_EQ(defaults.planner.goal_position_tolerance_m, 0.5);
 }
 
-TEST_F(PlanCommandTest, DemoPlansWithThePrm) {
-  const CliRun r =
-      run({"demo", "--out-dir", path("demo"), "--rows", "96", "--cols", "96", "--json"});
-  ASSERT_EQ(r.status, kExitSuccess) << r.err;
-  const nlohmann::json summary = nlohmann::json::parse(r.out);
-  ASSERT_TRUE(summary.contains("plan"));
-  const nlohmann::json& plan_report = summary["plan"];
-  EXPECT_EQ(plan_report["status"], "solved");
-  EXPECT_EQ(plan_report["planner"], "prm");
-  EXPECT_EQ(plan_report["constraint_violation"].get<double>(), 0.0);
-  EXPECT_TRUE(fs::exists(path("demo/plan.csv")));
-  EXPECT_EQ(plan_report["solutions"][0]["file"], path("demo") + "/plan.csv");
-}
-
 // The lattice planners: one solution (lattice) or one per homotopy class (taeasl), each written,
 // re-checked independently and named by its signature.
 TEST_F(PlanCommandTest, LatticeAndTaeaslSolveAndReportEverySolution) {

@@ -165,6 +165,61 @@ TEST(DirectTranscription, DerivativesMatchFiniteDifferencesOnRoughTerrain) {
   }
 }
 
+// Hermite-Simpson with piecewise-linear controls: the control-linearity rows and their
+// constant Jacobian against differences, and the rest unchanged.
+TEST(DirectTranscription, LinearControlRowsMatchDifferences) {
+  const terrain::ElevationMap map = fixtures::roughMap();
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::PointAttitudeModel point(surface);
+  BoundaryValueProblem problem = fixtures::cruise(4.0, 5.0, 0.0, 9.0, 7.0, 0.5);
+  const TranscriptionGuess guess = straightGuess(problem);
+  const TranscriptionModel model(point, problem);
+  TranscriptionLayout layout;
+  layout.scheme = TranscriptionScheme::kHermiteSimpson;
+  layout.mesh = uniformMesh(4);
+  layout.linear_controls = true;
+  TranscriptionNlp nlp(model, layout);
+  EXPECT_EQ(nlp.defectRowCount() - nlp.controlRowStart(), 2 * 4);
+  EXPECT_EQ(nlp.controlRowStart(), 2 * 4 * kStateSize);
+  EXPECT_STREQ(nlp.row(nlp.controlRowStart() + 3).name, "control_linearity");
+  EXPECT_EQ(nlp.row(nlp.controlRowStart() + 3).point, 1);
+  const Eigen::VectorXd x = perturbedVariables(nlp, guess, 7);
+  expectDerivativesMatch(nlp, x, 2e-5);
+  ASSERT_TRUE(nlp.evaluate(x.data()));
+  // Row 2 is interval 1's v': its midpoint (point 3) minus the mean of points 2 and 4.
+  const double expected =
+      x(kPointSize * 3 + 5) - 0.5 * (x(kPointSize * 2 + 5) + x(kPointSize * 4 + 5));
+  EXPECT_NEAR(nlp.constraints()(nlp.controlRowStart() + 2), expected, 1e-15);
+}
+
+// Bang-bang rest to rest with piecewise-linear controls: the re-simulated acceleration stays
+// within a_max between the points (quadratic controls overshoot a switch by up to 25 %).
+TEST(DirectTranscription, LinearControlsHoldTheAccelerationBetweenPoints) {
+  const terrain::ElevationMap map = fixtures::flatMap();
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::PointAttitudeModel vehicle(surface);
+  BoundaryValueProblem problem = restToRest(5.0, 10.0, 9.0, 10.0, 0.0);
+  problem.limits.a_max = 0.5;
+  problem.limits.v_max = 2.0;
+  DirectTranscriptionOptions options;
+  options.intervals = 15;
+  options.linear_controls = true;
+  const TranscriptionSolution s =
+      solveDirectTranscription(vehicle, problem, straightGuess(problem), options);
+  ASSERT_EQ(s.result.status, SolveStatus::kConverged) << s.result.reason;
+  EXPECT_NEAR(s.final_time / (2.0 * std::sqrt(4.0 / 0.5)), 1.0, 0.01);
+  for (std::size_t k = 0; k + 2 < s.points.size(); k += 2) {
+    EXPECT_NEAR(s.points[k + 1](5), 0.5 * (s.points[k](5) + s.points[k + 2](5)), 1e-7);
+  }
+  for (double t = 0.0; t <= s.final_time; t += s.final_time / 997.0) {
+    EXPECT_LE(std::abs(s.controlsAt(t).x()), 0.5 + 1e-6) << t;
+  }
+  const TranscriptionModel model(vehicle, problem);
+  const VerifiedTrajectory v = verifyTranscriptionSolution(model, s, &map);
+  ASSERT_TRUE(v.ok) << v.message;
+  EXPECT_LE(v.violation.amount, 1e-6) << v.violation.limit;
+}
+
 TEST(DirectTranscription, ShootingWithPiecewiseConstantControlsAndTheSegwayMatchDifferences) {
   const terrain::ElevationMap map = rampMap(-0.1);
   const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);

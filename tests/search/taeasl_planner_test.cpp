@@ -123,12 +123,16 @@ TEST(TaeaslPlanner, ForestGivesSeveralCheckedClasses) {
   EXPECT_EQ(names.size(), result.solutions.size());
 }
 
+// A search that cannot finish in the limit (a thousand classes wanted on a forest) stops on time.
 TEST(TaeaslPlanner, TimeLimitIsHonoured) {
   auto world = testing::makeWorld(terrain::TerrainKind::kForest, 256);
   const LatticeGraph graph(world->problem, defaultPrimitives());
-  const TaeaslPlanner planner(graph);
+  TaeaslOptions options;
+  options.homotopy_classes = 1000;
+  const TaeaslPlanner planner(graph, options);
   const double limit_s = 0.3;
   const PlanResult result = planner.solve(TerminationCondition::timeLimit(limit_s));
+  EXPECT_GE(result.planning_time_ms, limit_s * 1e3);
   EXPECT_LE(result.planning_time_ms, std::max(1.05 * limit_s * 1e3, limit_s * 1e3 + 10.0));
 }
 

@@ -27,7 +27,31 @@ struct PlanOptions {
   std::optional<double> time_limit_s;                ///< overrides planner.time_limit_s [s], >= 0
   std::optional<std::uint64_t> seed;                 ///< overrides planner.seed
   std::filesystem::path out_dir = "terratraj-plan";  ///< where solution_0.csv goes
+  /// Refine every solution (search::CandidateRefiner) into `<out-dir>/refined_<k>.csv`.
+  bool refine = false;
+  std::optional<std::string> method;          ///< overrides refine.method
+  std::optional<std::filesystem::path> plot;  ///< map PNG (and -profiles, -convergence)
 };
+
+class ProblemScene;
+
+/// The planner's query for a loaded problem: map, vehicle, limits, tables, start (the planners
+/// cannot turn in place: InputError for v = 0 with omega != 0), goal region; InputError naming
+/// the key when it is invalid.
+search::PlanningProblem planningProblem(const ProblemSpec& problem, const ProblemScene& scene);
+
+/// A finished `plan` run: its report and exit status.
+struct PlanRun {
+  nlohmann::json report;
+  int exit_status = 0;
+  /// A few lines a person reads (what the text mode prints).
+  std::string summary;
+};
+
+/// `plan` on a problem already read (overrides applied): plans, writes the solutions, refines
+/// them with --refine, draws the plots with --plot. Exit status 0 when solved (and, with
+/// --refine, at least one refinement converged), 1 otherwise; InputError for bad input.
+PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandContext& context);
 
 /// What a report says about its run besides the planner's result.
 struct PlanReportInfo {
@@ -43,12 +67,6 @@ struct PlanReportInfo {
 /// plus: seed, reason, best_cost_s, first_solution_cost_s, statistics, cost_history
 /// [{time_ms, cost_s}], constraint_violation and violated_limits (from the re-check).
 nlohmann::json planReportJson(const search::PlanResult& result, const PlanReportInfo& info);
-
-/// `terratraj demo`'s plan on `map`: the point vehicle from the standard start to the standard
-/// goal of generated maps (terrain::standardStartGoal), at rest, with the PRM for
-/// `time_limit_s`; writes the trajectory to `csv` when solved and returns the report.
-nlohmann::json planDemoProblem(const terrain::ElevationMap& map, const std::filesystem::path& csv,
-                               double time_limit_s, CommandContext& context);
 
 /// Runs the command: exit 0 solved, 1 no solution (the report still printed), InputError
 /// (exit 2) for bad input: an unreadable problem, a negative time limit, start or goal off the

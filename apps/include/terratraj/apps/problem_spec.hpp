@@ -235,6 +235,25 @@ struct PlannerSpec {
   std::optional<int> max_signature_length;          ///< taeasl: absent: 2 x frames + 2
 };
 
+/// `refine`: how `plan --refine` and `refine` turn candidates into locally optimal trajectories
+/// (search::CandidateRefiner; docs/refinement.md).
+struct RefineSpec {
+  std::string method = "auto";      ///< auto | collocation | shooting | newton | ipopt
+  double interval_length_m = 0.25;  ///< one transcription interval per this much length [m], > 0
+  int min_intervals = 20;           ///< fewest transcription intervals, >= 2
+  int max_intervals = 800;          ///< most transcription intervals, >= min_intervals
+  double min_clearance_m = 0.25;    ///< clearance from lethal / no-data cells [m], >= 0
+  double limit_margin = 0.02;    ///< kappa, sigma, pitch, roll solved this much tighter, [0, 0.5)
+  double speed_margin = 0.0005;  ///< v_max, omega_max solved this much tighter, [0, 0.5)
+  /// Weight of the integral of v'^2 + omega'^2 [s^4/m^2], >= 0: damps the controls' ringing
+  /// between points on arcs at v_max (where any alternating sequence takes the same time).
+  double control_effort = 1e-4;
+  int max_iterations = 500;            ///< Ipopt iterations per candidate, >= 1
+  std::optional<double> time_limit_s;  ///< wall clock per candidate [s], >= 0; absent = none
+  double parametric_max_length_m =
+      10.0;  ///< auto: polynomial controls only up to this length [m], >= 0
+  double parametric_min_clearance_m = 3.0;  ///< auto: ... and this far from obstacles [m], >= 0
+};
 /// The whole problem file.
 struct ProblemSpec {
   /// The file it was read from, as given (for messages); for parseProblem(), its display name.
@@ -247,6 +266,7 @@ struct ProblemSpec {
   CostSpec cost;
   SolverSpec solver;
   PlannerSpec planner;
+  RefineSpec refine;
   /// The frame start and goal are currently written in: terrain.frame as loaded, and kLocal
   /// once resolvePosesOnTerrain() has converted them (terrain.frame itself is kept).
   terrain::CoordinateFrame pose_frame = terrain::CoordinateFrame::kLocal;

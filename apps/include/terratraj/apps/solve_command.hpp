@@ -25,6 +25,7 @@ struct SolveOptions {
   /// Shooting / collocation: start from this trajectory or x,y path (CSV) instead of the
   /// parametric solution.
   std::optional<std::filesystem::path> guess;
+  std::optional<std::filesystem::path> plot;  ///< map PNG (and -profiles, -convergence)
 };
 
 /// The parametric problem a problem file describes (tables not attached). Throws InputError
@@ -45,15 +46,14 @@ nlohmann::json transcriptionReportJson(const ocp::TranscriptionSolution& solutio
                                        const ocp::DirectTranscriptionOptions& options,
                                        const std::string& guess_source);
 
+/// The report's figures that come from an independent re-simulation: final_time_s, cost,
+/// length_m, terminal_error, max_abs_pitch_rad, max_abs_roll_rad, max_speed,
+/// constraint_violation, violated_limit, slope_dwell_rad2_s, verified (null where it failed).
+nlohmann::json verifiedTrajectoryJson(const ocp::VerifiedTrajectory& verified);
+
 /// The contract's solve report for a solution.
 nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,
                                const ocp::BoundaryValueOptions& options);
-
-/// `terratraj demo`'s boundary-value problem on `map`: the rocker-bogie rover at 0.5 m/s from
-/// 15 % of the map's width to 6 m further (1.5 m left, heading +0.3 rad), minimum time + slope
-/// dwell (alpha = 1), solved by newton; writes the trajectory to `csv` and returns the report.
-nlohmann::json solveDemoProblem(const terrain::ElevationMap& map, const std::filesystem::path& csv,
-                                CommandContext& context);
 
 /// Runs the command: exit 0 when converged, 1 when the problem was read but not solved (the
 /// report still printed), InputError (exit 2) for bad input.

@@ -27,12 +27,6 @@ struct TerrainGenerateOptions {
   std::filesystem::path out;
 };
 
-/// Options of `terratraj demo`.
-struct DemoOptions {
-  std::filesystem::path out_dir = "terratraj-demo";
-  terrain::GeneratorOptions generator;  ///< the built-in default terrain
-};
-
 /// The JSON form of terrain statistics (lengths in metres, angles in radians).
 nlohmann::json terrainStatisticsJson(const terrain::TerrainStatistics& stats);
 /// A few lines a person reads, for the same statistics (angles in degrees).
@@ -42,7 +36,5 @@ std::string terrainStatisticsText(const terrain::TerrainStatistics& stats);
 int runTerrainInfo(const TerrainInfoOptions& options, CommandContext& context);
 /// Generates a terrain and writes it as GeoTIFF. Throws InputError for bad options or paths.
 int runTerrainGenerate(const TerrainGenerateOptions& options, CommandContext& context);
-/// The main job on built-in defaults: generate a terrain, write it and its summary.
-int runDemo(const DemoOptions& options, CommandContext& context);
 
 }  // namespace terratraj::apps

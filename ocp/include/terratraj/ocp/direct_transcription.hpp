@@ -43,6 +43,9 @@ struct MeshRefinementOptions {
 struct DirectTranscriptionOptions {
   TranscriptionScheme scheme = TranscriptionScheme::kHermiteSimpson;
   ShootingControls shooting_controls = ShootingControls::kPiecewiseLinear;
+  /// Hermite-Simpson: piecewise-linear controls (TranscriptionLayout::linear_controls), so that
+  /// |v'| <= a_max and |omega'| hold between the points too; refinement uses it.
+  bool linear_controls = false;
   int intervals = 40;  ///< N, >= 1
   /// Unset: exact for collocation, limited-memory for shooting and for the Segway (whose
   /// piecewise-bilinear look-ups have no useful second derivatives).

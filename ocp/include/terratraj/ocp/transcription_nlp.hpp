@@ -52,6 +52,12 @@ struct TranscriptionLayout {
   /// of the cell averages the jumps of the terrain's second derivatives at cell boundaries
   /// (bicubic interpolation is only C1), which a tiny step turns into spikes.
   double hessian_position_step = 0.0;
+  /// Hermite-Simpson only: each midpoint's controls are the mean of its interval's node
+  /// controls (2 linear equality rows "control_linearity" per interval, after the defects), so
+  /// the controls are piecewise linear and their bounds (|v'| <= a_max) hold between the points
+  /// too; free midpoint controls make them quadratic, which overshoots a bang-bang switch by up
+  /// to 25 %.
+  bool linear_controls = false;
 };
 
 /// A uniform mesh of `intervals` (>= 1) intervals.
@@ -81,7 +87,12 @@ class TranscriptionNlp {
   int points() const { return static_cast<int>(tau_.size()); }
   int variableCount() const { return kPointSize * points() + 1; }
   int constraintCount() const { return defect_rows_ + path_rows_; }
+  /// Equality rows (dynamics defects, then the control-linearity rows): the first
+  /// defectRowCount() rows of g.
   int defectRowCount() const { return defect_rows_; }
+  /// First control-linearity row (== defectRowCount() without them); row r >= it holds
+  /// v' (r even relative to it) or omega' (odd) of interval (r - controlRowStart()) / 2.
+  int controlRowStart() const { return control_row_start_; }
   /// Index of t_f in x.
   int finalTimeIndex() const { return kPointSize * points(); }
   /// Normalised time of each point.
@@ -159,6 +170,7 @@ class TranscriptionNlp {
   std::vector<double> tau_, weights_;
   std::vector<DefectBlock> blocks_;
   int defect_rows_ = 0, path_rows_ = 0, path_jac_start_ = 0;
+  int control_row_start_ = 0, control_jac_start_ = 0;
   std::vector<int> jac_rows_, jac_cols_, hess_rows_, hess_cols_;
   std::vector<PointEvaluation> evals_;
   std::vector<models::AttitudeWorkspace> workspaces_;

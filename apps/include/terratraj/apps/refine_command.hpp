@@ -1,0 +1,68 @@
+#pragma once
+// `terratraj refine` and the refinement half of `terratraj plan --refine`: candidates (a
+// planner's, or any path or trajectory CSV) turned into locally optimal trajectories by
+// search::CandidateRefiner, with reports that put each candidate beside its refinement
+// (docs/refinement.md).
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "terratraj/apps/command_context.hpp"
+#include "terratraj/apps/problem_spec.hpp"
+#include "terratraj/search/candidate_refiner.hpp"
+#include "terratraj/search/planning_problem.hpp"
+#include "terratraj/search/reference_frames.hpp"
+
+namespace terratraj::apps {
+
+/// Options of `terratraj refine`.
+struct RefineOptions {
+  std::filesystem::path problem;
+  std::filesystem::path candidate;            ///< the candidate CSV (t,x,y,... or only x,y)
+  std::optional<std::string> method;          ///< overrides refine.method
+  std::optional<std::filesystem::path> out;   ///< the refined trajectory (CSV)
+  std::optional<std::filesystem::path> plot;  ///< map PNG (and -profiles, -convergence)
+};
+
+/// The refinement settings a problem file describes: its `refine` section, the solver's
+/// terminal tolerances, scheme and Hessian; `method` (a RefineMethod name) overrides
+/// refine.method. Throws InputError naming the option for an unknown method.
+search::RefinementOptions refinementOptions(const ProblemSpec& problem,
+                                            const std::optional<std::string>& method);
+
+/// The reference frames a problem's homotopy classes are named by: TAEASL's construction with
+/// planner.frame_anchor and planner.frame_radius_m, so that `plan --planner taeasl` and
+/// `refine` name the same classes.
+search::ReferenceFrames problemReferenceFrames(const ProblemSpec& problem,
+                                               const search::PlanningProblem& query);
+
+/// The figures of a trajectory as JSON (cost, duration_s, length_m, max_abs_pitch_rad,
+/// max_abs_roll_rad, max_speed, min_clearance_m, check {ok, constraint_violation,
+/// violated_limits}, homotopy).
+nlohmann::json trajectoryFiguresJson(const search::TrajectoryFigures& figures);
+
+/// The `refined` block of a plan report's solution: status, reason, cost_s (duration), cost
+/// (the problem's cost), file, method, method_rule, iterations, solve_time_ms and the refined
+/// trajectory's figures, homotopy (after), homotopy_kept, cost_ratio.
+nlohmann::json refinedSolutionJson(const search::RefinementResult& result,
+                                   const std::optional<std::filesystem::path>& file);
+
+/// The `refine` report: the contract's solve/refine keys (from the independent re-simulation)
+/// plus candidate {file, derived_columns, figures}, refined {figures}, homotopy {before, after,
+/// kept}, cost_ratio and the settings in use.
+nlohmann::json refineReportJson(const search::RefinementResult& result,
+                                const search::RefinementOptions& options,
+                                const std::filesystem::path& candidate_file,
+                                const std::optional<std::filesystem::path>& out);
+
+/// Runs the command: exit 0 when the refinement converged (solver, re-simulation, limits and
+/// class all hold), 1 when it did not (the report still printed with the status and reason),
+/// InputError (exit 2) for bad input: an unreadable problem or candidate CSV, a candidate
+/// without x, y, with NaN, a single point, or leaving the map (the JSON report then also
+/// holds what could be measured of the candidate).
+int runRefine(const RefineOptions& options, CommandContext& context);
+
+}  // namespace terratraj::apps

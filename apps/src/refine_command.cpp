@@ -1,0 +1,276 @@
+#include "terratraj/apps/refine_command.hpp"
+
+#include <cmath>
+#include <ostream>
+
+#include "terratraj/apps/cli.hpp"
+#include "terratraj/apps/plan_command.hpp"
+#include "terratraj/apps/plot_writer.hpp"
+#include "terratraj/apps/problem_loader.hpp"
+#include "terratraj/apps/problem_scene.hpp"
+#include "terratraj/apps/solve_command.hpp"
+#include "terratraj/models/trajectory_csv.hpp"
+#include "terratraj/search/taeasl_planner.hpp"
+#include "terratraj/terrain/input_error.hpp"
+#include "terratraj/terrain/obstacle_clusters.hpp"
+
+namespace terratraj::apps {
+namespace {
+
+nlohmann::json number(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json checkJson(const search::CheckReport& check) {
+  nlohmann::json violated = nlohmann::json::array();
+  for (const search::CheckViolation& v : check.violations) violated.push_back(v.limit);
+  return {{"ok", check.ok()},
+          {"constraint_violation", check.max_violation},
+          {"violated_limits", violated}};
+}
+
+// Creates the folder of an output file; InputError naming it when that fails.
+void createOutputDirectory(const std::filesystem::path& file) {
+  if (!file.has_parent_path()) return;
+  std::error_code error;
+  std::filesystem::create_directories(file.parent_path(), error);
+  if (error) {
+    throw InputError("cannot create the folder of '" + file.string() + "': " + error.message());
+  }
+}
+
+}  // namespace
+
+search::RefinementOptions refinementOptions(const ProblemSpec& problem,
+                                            const std::optional<std::string>& method) {
+  const RefineSpec& spec = problem.refine;
+  search::RefinementOptions options;
+  const std::string name = method.value_or(spec.method);
+  const std::optional<search::RefineMethod> parsed = search::parseRefineMethod(name);
+  if (!parsed) {
+    throw InputError(
+        (method ? std::string("--method") : problem.source_file.string() + ": refine.method") +
+        ": unknown method '" + name + "' (auto, collocation, shooting, newton, ipopt)");
+  }
+  options.method = *parsed;
+  options.interval_length_m = spec.interval_length_m;
+  options.min_intervals = spec.min_intervals;
+  options.max_intervals = spec.max_intervals;
+  options.min_clearance_m = spec.min_clearance_m;
+  options.parametric_max_length_m = spec.parametric_max_length_m;
+  options.parametric_min_clearance_m = spec.parametric_min_clearance_m;
+  // The solver section's transcription settings (scheme, Hessian, effort, mesh refinement),
+  // with refine's own iteration and time limits.
+  ProblemSpec collocation = problem;
+  collocation.solver.method = SolverMethod::kCollocation;
+  options.transcription = transcriptionOptions(collocation);
+  options.transcription.max_iterations = spec.max_iterations;
+  options.transcription.linear_controls = true;
+  options.limit_margin = spec.limit_margin;
+  options.speed_margin = spec.speed_margin;
+  options.transcription.model.control_effort_weight = spec.control_effort;
+  options.transcription.time_limit_s = spec.time_limit_s;
+  options.parametric = boundaryValueOptions(problem);
+  options.parametric.method = ocp::BoundaryValueMethod::kNewton;
+  options.parametric.time_limit_s = spec.time_limit_s;
+  if (std::optional<std::string> why = search::validateRefinementOptions(options)) {
+    throw InputError(problem.source_file.string() + ": refine: " + *why);
+  }
+  return options;
+}
+
+search::ReferenceFrames problemReferenceFrames(const ProblemSpec& problem,
+                                               const search::PlanningProblem& query) {
+  const terrain::GridGeometry& g = query.map->geometry();
+  search::ReferenceFrameOptions options;
+  options.frame_radius = problem.planner.frame_radius_m;
+  if (problem.planner.frame_anchor == "start") {
+    options.anchor = query.start.position;
+  } else if (problem.planner.frame_anchor == "midpoint") {
+    options.anchor = 0.5 * (query.start.position + query.goal.position);
+  } else {
+    options.anchor = {0.5 * g.width(), 0.5 * g.height()};
+  }
+  return search::ReferenceFrames::build(*query.map, terrain::findObstacleClusters(*query.map),
+                                        options);
+}
+
+nlohmann::json trajectoryFiguresJson(const search::TrajectoryFigures& f) {
+  return {{"cost", number(f.cost)},
+          {"duration_s", number(f.duration_s)},
+          {"length_m", number(f.length_m)},
+          {"max_abs_pitch_rad", number(f.max_abs_pitch)},
+          {"max_abs_roll_rad", number(f.max_abs_roll)},
+          {"max_speed", number(f.max_speed)},
+          {"min_clearance_m", number(f.min_clearance_m)},
+          {"constraint_violation", f.check.max_violation},
+          {"check", checkJson(f.check)},
+          {"homotopy", f.homotopy}};
+}
+
+nlohmann::json refinedSolutionJson(const search::RefinementResult& r,
+                                   const std::optional<std::filesystem::path>& file) {
+  nlohmann::json json{{"status", ocp::solveStatusName(r.status)},
+                      {"reason", r.reason},
+                      {"cost_s", nullptr},
+                      {"cost", nullptr},
+                      {"file", file ? nlohmann::json(file->string()) : nlohmann::json(nullptr)},
+                      {"method", search::refineMethodName(r.method)},
+                      {"method_rule", r.method_rule},
+                      {"iterations", r.iterations},
+                      {"solve_time_ms", r.solve_time_ms},
+                      {"intervals", r.intervals},
+                      {"min_clearance_m", r.clearance_used_m},
+                      {"margin_rounds", r.margin_rounds},
+                      {"homotopy", nullptr},
+                      {"homotopy_kept", r.homotopy_kept},
+                      {"cost_ratio", number(r.costRatio())}};
+  if (r.refined_figures) {
+    json.update(trajectoryFiguresJson(*r.refined_figures));
+    json["cost_s"] = number(r.refined_figures->duration_s);
+    json["constraint_violation"] =
+        std::max(r.refined_figures->check.max_violation, r.verified.violation.amount);
+  }
+  return json;
+}
+
+nlohmann::json refineReportJson(const search::RefinementResult& r,
+                                const search::RefinementOptions& options,
+                                const std::filesystem::path& candidate_file,
+                                const std::optional<std::filesystem::path>& out) {
+  nlohmann::json history = nlohmann::json::array();
+  for (const ocp::IterationRecord& h : r.history) {
+    history.push_back({{"iteration", h.iteration},
+                       {"terminal_error", number(h.terminal_error)},
+                       {"cost", number(h.cost)},
+                       {"lagrangian_gradient", number(h.lagrangian_gradient)},
+                       {"step", number(h.step)}});
+  }
+  nlohmann::json derived = nlohmann::json::array();
+  for (const std::string& c : r.derived_columns) derived.push_back(c);
+  nlohmann::json candidate{{"file", candidate_file.string()},
+                           {"samples", r.candidate.samples.size()},
+                           {"derived_columns", derived}};
+  if (r.candidate_figures) candidate.update(trajectoryFiguresJson(*r.candidate_figures));
+  const bool transcription =
+      r.method == search::RefineMethod::kCollocation || r.method == search::RefineMethod::kShooting;
+  nlohmann::json json{
+      {"status", ocp::solveStatusName(r.status)},
+      {"reason", r.reason},
+      {"method", search::refineMethodName(r.method)},
+      {"method_rule", r.method_rule},
+      {"iterations", r.iterations},
+      {"max_iterations",
+       transcription ? options.transcription.max_iterations : options.parametric.max_iterations},
+      {"time_limit_s", options.transcription.time_limit_s
+                           ? nlohmann::json(*options.transcription.time_limit_s)
+                           : nlohmann::json(nullptr)},
+      {"solve_time_ms", r.solve_time_ms},
+      {"intervals", r.intervals},
+      {"min_clearance_m", r.clearance_used_m},
+      {"margins",
+       {{"rounds", r.margin_rounds},
+        {"speed", r.speed_margin_used},
+        {"limits", r.limit_margin_used}}},
+      {"history", history},
+      {"candidate", candidate},
+      {"refined",
+       r.refined_figures ? trajectoryFiguresJson(*r.refined_figures) : nlohmann::json(nullptr)},
+      {"homotopy",
+       {{"before", r.candidate_figures ? nlohmann::json(r.candidate_figures->homotopy)
+                                       : nlohmann::json(nullptr)},
+        {"after",
+         r.refined_figures ? nlohmann::json(r.refined_figures->homotopy) : nlohmann::json(nullptr)},
+        {"kept", r.homotopy_kept}}},
+      {"cost_ratio", number(r.costRatio())},
+      {"file", out && r.verified.ok ? nlohmann::json(out->string()) : nlohmann::json(nullptr)},
+  };
+  json.update(verifiedTrajectoryJson(r.verified));
+  if (r.refined_figures) {
+    json["constraint_violation"] =
+        std::max(r.refined_figures->check.max_violation, r.verified.violation.amount);
+  }
+  return json;
+}
+
+int runRefine(const RefineOptions& options, CommandContext& context) {
+  ProblemSpec problem = loadProblem(options.problem);
+  const search::RefinementOptions refine = refinementOptions(problem, options.method);
+  const models::Trajectory candidate = models::readTrajectoryCsv(options.candidate);
+  const ProblemScene scene(problem, context);
+  const search::PlanningProblem query = planningProblem(problem, scene);
+  ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem);
+  bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable()};
+  const search::ReferenceFrames frames = problemReferenceFrames(problem, query);
+  const search::CandidateRefiner refiner(query, bvp, frames, refine);
+  context.log->info("refining {} ({} samples) on the {} model", options.candidate.string(),
+                    candidate.samples.size(), scene.vehicle().name());
+  const search::RefinementResult result = refiner.refine(candidate);
+  if (options.out && result.verified.ok) {
+    createOutputDirectory(*options.out);
+    models::writeTrajectoryCsv(result.verified.trajectory, *options.out);
+  }
+  nlohmann::json report = refineReportJson(result, refine, options.candidate, options.out);
+  // A candidate that cannot be used is bad input: the report still says what was measured.
+  const bool bad_candidate = result.status == ocp::SolveStatus::kError;
+  if (bad_candidate) {
+    report["error"] = options.candidate.string() + ": " + result.reason;
+    context.err << "terratraj: error: " << options.candidate.string() << ": " << result.reason
+                << '\n';
+  }
+  if (options.plot && !bad_candidate) {
+    createOutputDirectory(*options.plot);
+    PlotRequest plot;
+    plot.title = "refine " + options.candidate.filename().string() + " (" +
+                 search::refineMethodName(result.method) + ")";
+    plot.limits = problem.vehicle.limits;
+    plot.start = PlotPose{problem.start.x, problem.start.y, problem.start.heading};
+    plot.goal = PlotPose{problem.goal.x, problem.goal.y, problem.goal.heading};
+    plot.tolerance_position_m = refine.parametric.criteria.position_m;
+    const std::filesystem::path derived =
+        options.plot->parent_path() / (options.plot->stem().string() + "-candidate.csv");
+    models::writeTrajectoryCsv(result.candidate, derived);
+    plot.trajectories.push_back({"candidate", derived, true, 0});
+    if (options.out && result.verified.ok) {
+      plot.trajectories.push_back({"refined", *options.out, false, 0});
+    } else if (result.verified.ok) {
+      const std::filesystem::path refined =
+          options.plot->parent_path() / (options.plot->stem().string() + "-refined.csv");
+      models::writeTrajectoryCsv(result.verified.trajectory, refined);
+      plot.trajectories.push_back({"refined", refined, false, 0});
+    }
+    plot.histories.push_back({search::refineMethodName(result.method), result.history, 0});
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      plot.frames.push_back({search::HomotopySignature::frameName(static_cast<int>(k)),
+                             frames.frames()[k].start, frames.frames()[k].end});
+    }
+    report["plots"] = writePlots(plot, scene.map(), *options.plot, context).toJson();
+  }
+  if (context.json) {
+    context.out << report.dump(2) << '\n';
+  } else {
+    context.out << ocp::solveStatusName(result.status) << " ("
+                << search::refineMethodName(result.method) << ", " << result.iterations
+                << " iterations, " << result.solve_time_ms << " ms)";
+    if (!result.reason.empty()) context.out << ": " << result.reason;
+    context.out << '\n';
+    if (!result.method_rule.empty()) context.out << "  method      " << result.method_rule << '\n';
+    const auto line = [&](const char* name, const search::TrajectoryFigures& f) {
+      context.out << "  " << name << "cost " << f.cost << " s, " << f.length_m << " m, max |pitch| "
+                  << f.max_abs_pitch << " rad, max |roll| " << f.max_abs_roll << " rad, class '"
+                  << f.homotopy << "', re-check " << (f.check.ok() ? "ok" : "VIOLATED") << '\n';
+    };
+    if (result.candidate_figures) line("candidate   ", *result.candidate_figures);
+    if (result.refined_figures) line("refined     ", *result.refined_figures);
+    if (std::isfinite(result.costRatio())) {
+      context.out << "  ratio       " << result.costRatio() << " (refined / candidate cost)\n";
+    }
+    if (options.out && result.verified.ok) {
+      context.out << "  trajectory  " << options.out->string() << '\n';
+    }
+  }
+  if (bad_candidate) return kExitBadInput;
+  return result.status == ocp::SolveStatus::kConverged ? kExitSuccess : kExitNotSolved;
+}
+
+}  // namespace terratraj::apps

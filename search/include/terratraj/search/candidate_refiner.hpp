@@ -1,0 +1,192 @@
+#pragma once
+// CandidateRefiner: turns a planner's candidate (or any path: a full trajectory, x,y,heading or
+// only x,y) into a locally optimal trajectory with the optimal-control core, and checks that
+// the result stays in the candidate's homotopy class (docs/refinement.md).
+//
+// Pipeline for one candidate:
+//   1. the candidate is validated (at least two distinct points, finite, on the map) and
+//      completed: missing timing gets a feasible speed profile (ocp::guessFromPath), missing
+//      attitude columns come from the vehicle model;
+//   2. its figures are measured (cost, length, pitch, roll, the independent TrajectoryChecker,
+//      its HomotopySignature over the reference frames);
+//   3. the method is chosen (RefineMethod::kAuto: newton when polynomial controls suffice,
+//      collocation otherwise; the rule is chooseRefineMethod) and the problem solved from the
+//      candidate (direct transcription: warm start from it, one interval per
+//      interval_length_m, a clearance constraint from impassable cells so that the optimiser
+//      cannot slide through an obstacle);
+//   4. the result is re-simulated independently, re-checked by TrajectoryChecker, and its
+//      signature compared with the candidate's.
+// A refinement counts as converged only when the solver converged, the re-simulation reaches
+// the goal within the tolerances, every limit holds (both checks) and the class is kept.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "terratraj/models/trajectory.hpp"
+#include "terratraj/ocp/boundary_value_problem.hpp"
+#include "terratraj/ocp/boundary_value_solver.hpp"
+#include "terratraj/ocp/direct_transcription.hpp"
+#include "terratraj/ocp/solve_result.hpp"
+#include "terratraj/ocp/trajectory_verifier.hpp"
+#include "terratraj/search/planning_problem.hpp"
+#include "terratraj/search/reference_frames.hpp"
+#include "terratraj/search/trajectory_checker.hpp"
+#include "terratraj/terrain/clearance_map.hpp"
+
+namespace terratraj::search {
+
+/// How a candidate is refined.
+enum class RefineMethod {
+  kAuto,         ///< ipopt when polynomial controls suffice, else collocation (see below)
+  kCollocation,  ///< Hermite-Simpson (or the configured scheme) warm-started from the candidate
+  kShooting,     ///< multiple shooting warm-started from the candidate
+  kNewton,       ///< polynomial controls by 004_...'s Newton: limits not enforced, only checked
+  kIpopt,        ///< polynomial controls through Ipopt, limits enforced (sampled)
+};
+// The parametric methods (newton, ipopt) start from their own guess, not the candidate's shape:
+// they suit short, open, simple candidates, where the candidate's class is the direct one.
+
+/// "auto", "collocation", "shooting", "newton", "ipopt".
+const char* refineMethodName(RefineMethod method);
+/// Parses a method name; std::nullopt if it is not one.
+std::optional<RefineMethod> parseRefineMethod(std::string_view name);
+/// Every method name, in declaration order.
+std::vector<std::string> refineMethodNames();
+
+/// Settings of a CandidateRefiner.
+struct RefinementOptions {
+  RefineMethod method = RefineMethod::kAuto;
+  /// Direct transcription: one interval per this much candidate length [m], > 0 ...
+  double interval_length_m = 0.25;
+  int min_intervals = 20;   ///< ... but at least this many, >= 1
+  int max_intervals = 800;  ///< ... and at most this many, >= min_intervals
+  /// Clearance kept from lethal and no-data cells [m], >= 0; lowered to half the candidate's
+  /// own smallest clearance when that is less (a candidate through a narrow gap stays feasible).
+  double min_clearance_m = 0.25;
+  /// kAuto picks ipopt (polynomial controls) only for candidates at most this long [m] ...
+  double parametric_max_length_m = 10.0;
+  /// ... whose every sample is at least this far from impassable cells [m] ...
+  double parametric_min_clearance_m = 3.0;
+  /// ... and whose curvature changes sign at most this many times (a quartic yaw rate).
+  int parametric_max_curvature_sign_changes = 2;
+  /// Direct transcription settings (scheme, iterations, time limit, tolerances; the number of
+  /// intervals and the clearance are set per candidate).
+  ocp::DirectTranscriptionOptions transcription = [] {
+    ocp::DirectTranscriptionOptions options;
+    options.max_iterations = 500;
+    options.linear_controls = true;
+    return options;
+  }();
+  /// Direct transcription imposes the limits at its points only: it is solved with kappa_max,
+  /// sigma_max, pitch_max and roll_max lowered by this fraction, in [0, 0.5), so that the
+  /// re-simulated trajectory holds the true limits between the points too ...
+  double limit_margin = 0.02;
+  /// ... and with v_max and omega_max lowered by this fraction, in [0, 0.5) (the speed is
+  /// quadratic between points; the overshoot measured at 0.25 m intervals is about 0.1 %).
+  double speed_margin = 0.0005;
+  /// A re-simulation that still breaks a limit by more than parametric.limit_tolerance is
+  /// solved again from its own solution, up to this many times, >= 0: first with twice the
+  /// intervals (within max_intervals), then with the speed margin x 4 and the others x 2 (at
+  /// most 0.25).
+  int margin_retries = 2;
+  /// The parametric solvers' settings (newton, ipopt; the method is set per refinement), and
+  /// the terminal tolerances and limit tolerance of every method.
+  ocp::BoundaryValueOptions parametric;
+  /// Sampling of the candidate's derived speed profile for an x,y path [m].
+  double guess_spacing_m = 0.25;
+  /// Tolerances of the independent re-check of the refined trajectory.
+  CheckTolerances check = [] {
+    CheckTolerances tolerances;
+    tolerances.relative = 1e-3;
+    tolerances.absolute = 1e-6;
+    return tolerances;
+  }();
+};
+
+/// Why the options cannot be used, or std::nullopt.
+std::optional<std::string> validateRefinementOptions(const RefinementOptions& options);
+
+/// The figures of one trajectory (a candidate or its refinement).
+struct TrajectoryFigures {
+  double cost = 0.0;        ///< the problem's cost functional, integrated over the samples [s]
+  double duration_s = 0.0;  ///< [s]
+  double length_m = 0.0;    ///< planar length [m]
+  double max_abs_pitch = 0.0, max_abs_roll = 0.0;  ///< [rad]
+  double max_speed = 0.0;                          ///< [m/s]
+  double min_clearance_m = 0.0;  ///< smallest clearance from impassable cells over samples [m]
+  CheckReport check;             ///< the independent re-check (TrajectoryChecker)
+  std::string homotopy;          ///< signature over the refiner's reference frames
+};
+
+/// The outcome of one refinement.
+struct RefinementResult {
+  ocp::SolveStatus status = ocp::SolveStatus::kError;
+  std::string reason;                         ///< why, for anything but kConverged
+  RefineMethod method = RefineMethod::kAuto;  ///< the method used (never kAuto once solved)
+  std::string method_rule;                    ///< why kAuto chose it
+  models::Trajectory candidate;               ///< the candidate with every column (derived)
+  std::vector<std::string> derived_columns;   ///< columns the candidate lacked
+  std::optional<TrajectoryFigures> candidate_figures;  ///< absent when it could not be measured
+  std::optional<TrajectoryFigures> refined_figures;    ///< absent when nothing re-simulated
+  bool homotopy_kept = false;
+  int intervals = 0;               ///< direct transcription's final interval count
+  int margin_rounds = 0;           ///< direct transcription solves (1 + margin retries used)
+  double speed_margin_used = 0.0;  ///< the margins of the last solve (fractions)
+  double limit_margin_used = 0.0;
+  double clearance_used_m = 0.0;              ///< the clearance constraint (transcription)
+  int iterations = 0;                         ///< solver iterations (all mesh rounds)
+  double solve_time_ms = 0.0;                 ///< whole refinement [ms]
+  std::vector<ocp::IterationRecord> history;  ///< per iteration: terminal error, cost
+  ocp::VerifiedTrajectory verified;           ///< the independent re-simulation
+  std::optional<ocp::TranscriptionSolution> transcription;  ///< shooting / collocation
+  std::optional<ocp::BoundaryValueSolution> parametric;     ///< newton
+  /// refined cost / candidate cost (NaN unless both are known).
+  double costRatio() const;
+};
+
+/// Refines candidates of one problem. Holds the clearance map (built once); immutable after
+/// construction, but Ipopt 3.11 is not thread-safe: one refine() at a time per process.
+class CandidateRefiner {
+ public:
+  /// `problem` (map, vehicle, limits, tables, start, goal region), `bvp` (its boundary-value
+  /// form: exact start and goal, cost, tables) and `frames` must outlive the refiner.
+  CandidateRefiner(const PlanningProblem& problem, const ocp::BoundaryValueProblem& bvp,
+                   const ReferenceFrames& frames, const RefinementOptions& options = {});
+
+  /// Refines one candidate. Never throws (except std::bad_alloc): a candidate that cannot be
+  /// used (a single point, NaN, off the map) gives kError with the sample at fault; a solver
+  /// failure gives its status; a converged solve that breaks a limit or leaves the class gives
+  /// kInfeasible, one that misses the goal kDiverged.
+  RefinementResult refine(const models::Trajectory& candidate) const;
+
+  /// The figures of a trajectory with every column (cost, extremes, check, class).
+  TrajectoryFigures measure(const models::Trajectory& trajectory,
+                            const CheckTolerances& tolerances) const;
+
+  const RefinementOptions& options() const { return options_; }
+  const ReferenceFrames& frames() const { return *frames_; }
+
+ private:
+  // Direct transcription from `guess` with the margin retries; fills `out` (status, reason,
+  // verified, history, intervals, clearance).
+  void transcribe(const ocp::TranscriptionGuess& guess, const TrajectoryFigures& before,
+                  RefinementResult& out) const;
+
+  const PlanningProblem* problem_;
+  const ocp::BoundaryValueProblem* bvp_;
+  const ReferenceFrames* frames_;
+  RefinementOptions options_;
+  terrain::ClearanceMap clearance_;
+};
+
+/// kAuto's rule for one candidate of planar length `length_m`, smallest clearance
+/// `min_clearance_m` and `curvature_sign_changes`: ipopt (polynomial controls) when all three
+/// are within the options' newton_* bounds, else collocation; a configured method is returned
+/// as it is. Writes the reason into `rule`. A failed ipopt falls back to collocation.
+RefineMethod chooseRefineMethod(const RefinementOptions& options, double length_m,
+                                double min_clearance_m, int curvature_sign_changes,
+                                std::string& rule);
+
+}  // namespace terratraj::search

@@ -1,0 +1,489 @@
+#include "terratraj/search/candidate_refiner.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "terratraj/ocp/transcription_guess.hpp"
+#include "terratraj/ocp/transcription_model.hpp"
+
+namespace terratraj::search {
+namespace {
+
+using models::TrajectoryColumn;
+
+constexpr std::array<std::pair<RefineMethod, const char*>, 5> kMethodNames{{
+    {RefineMethod::kAuto, "auto"},
+    {RefineMethod::kCollocation, "collocation"},
+    {RefineMethod::kShooting, "shooting"},
+    {RefineMethod::kNewton, "newton"},
+    {RefineMethod::kIpopt, "ipopt"},
+}};
+
+std::string formatNumber(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+std::string formatPoint(double x, double y) {
+  return "(" + formatNumber(x) + ", " + formatNumber(y) + ")";
+}
+
+// Why the candidate cannot be refined (a single point, NaN, off the map), or std::nullopt.
+std::optional<std::string> candidateError(const models::Trajectory& candidate,
+                                          const terrain::GridGeometry& geometry) {
+  if (!candidate.has(TrajectoryColumn::kX) || !candidate.has(TrajectoryColumn::kY)) {
+    return std::string("the candidate has no x and y columns");
+  }
+  if (candidate.samples.size() < 2) {
+    return "the candidate is a single point (" + std::to_string(candidate.samples.size()) +
+           " sample" + (candidate.samples.size() == 1 ? "" : "s") + "): a path needs two";
+  }
+  bool distinct = false;
+  const models::TrajectorySample& first = candidate.samples.front();
+  for (std::size_t i = 0; i < candidate.samples.size(); ++i) {
+    const models::TrajectorySample& s = candidate.samples[i];
+    if (!std::isfinite(s.x) || !std::isfinite(s.y)) {
+      return "sample " + std::to_string(i) + ": x, y is not a finite number";
+    }
+    if (!geometry.contains({s.x, s.y})) {
+      return "sample " + std::to_string(i) + " at " + formatPoint(s.x, s.y) +
+             " leaves the map (0..." + formatNumber(geometry.width()) + " x 0..." +
+             formatNumber(geometry.height()) + " m, local frame)";
+    }
+    if (std::hypot(s.x - first.x, s.y - first.y) > 1e-6) distinct = true;
+  }
+  if (!distinct) return std::string("the candidate is a single point: all its samples coincide");
+  return std::nullopt;
+}
+
+bool hasTiming(const models::Trajectory& t) {
+  if (!t.has(TrajectoryColumn::kT) || !t.has(TrajectoryColumn::kV) ||
+      !t.has(TrajectoryColumn::kHeading)) {
+    return false;
+  }
+  return std::all_of(t.samples.begin(), t.samples.end(), [](const models::TrajectorySample& s) {
+    return std::isfinite(s.t) && std::isfinite(s.v) && std::isfinite(s.heading);
+  });
+}
+
+// Fills z, roll, pitch from the vehicle model at every sample; false (and `why`) where the
+// vehicle cannot rest.
+bool fillAttitude(const models::TerrainFollowingModel& vehicle, models::Trajectory& trajectory,
+                  std::string& why) {
+  models::AttitudeWorkspace workspace;
+  models::AttitudeResult result;
+  for (std::size_t i = 0; i < trajectory.samples.size(); ++i) {
+    models::TrajectorySample& s = trajectory.samples[i];
+    const models::AttitudeStatus status = vehicle.compute({s.x, s.y, s.heading}, workspace, result);
+    if (status != models::AttitudeStatus::kOk) {
+      why = "sample " + std::to_string(i) + " at " + formatPoint(s.x, s.y) +
+            ": the vehicle cannot rest there (" + models::attitudeStatusName(status) + ")";
+      return false;
+    }
+    s.z = result.attitude.z;
+    s.roll = result.attitude.roll;
+    s.pitch = result.attitude.pitch;
+  }
+  for (TrajectoryColumn c :
+       {TrajectoryColumn::kZ, TrajectoryColumn::kRoll, TrajectoryColumn::kPitch}) {
+    trajectory.has_column[static_cast<std::size_t>(c)] = true;
+  }
+  return true;
+}
+
+// The candidate with every column: its own samples when it has timing, else the samples of
+// its guess (resampled by arc length with a feasible speed profile).
+models::Trajectory completeCandidate(const models::Trajectory& candidate,
+                                     const ocp::TranscriptionGuess& guess) {
+  models::Trajectory full;
+  if (hasTiming(candidate)) {
+    full = candidate;
+    // Fill what is missing from the guess built on the same samples.
+    for (std::size_t i = 0; i < full.samples.size() && i < guess.points.size(); ++i) {
+      models::TrajectorySample& s = full.samples[i];
+      const ocp::PointVector& w = guess.points[i];
+      if (!full.has(TrajectoryColumn::kOmega) || !std::isfinite(s.omega)) s.omega = w(4);
+      if (!full.has(TrajectoryColumn::kCurvature) || !std::isfinite(s.curvature)) {
+        s.curvature = s.v > 1e-9 ? s.omega / s.v : 0.0;
+      }
+    }
+  } else {
+    full.samples.reserve(guess.points.size());
+    for (std::size_t i = 0; i < guess.points.size(); ++i) {
+      const ocp::PointVector& w = guess.points[i];
+      models::TrajectorySample s = models::TrajectorySample::unknown();
+      s.t = guess.t[i];
+      s.x = w(0);
+      s.y = w(1);
+      s.heading = w(2);
+      s.v = w(3);
+      s.omega = w(4);
+      s.curvature = w(3) > 1e-9 ? w(4) / w(3) : 0.0;
+      full.samples.push_back(s);
+    }
+  }
+  full.ignored_columns.clear();
+  for (TrajectoryColumn c : {TrajectoryColumn::kT, TrajectoryColumn::kX, TrajectoryColumn::kY,
+                             TrajectoryColumn::kHeading, TrajectoryColumn::kV,
+                             TrajectoryColumn::kOmega, TrajectoryColumn::kCurvature}) {
+    full.has_column[static_cast<std::size_t>(c)] = true;
+  }
+  return full;
+}
+
+int curvatureSignChanges(const models::Trajectory& t) {
+  int changes = 0, sign = 0;
+  for (const models::TrajectorySample& s : t.samples) {
+    if (!std::isfinite(s.curvature) || std::abs(s.curvature) < 1e-3) continue;
+    const int current = s.curvature > 0.0 ? 1 : -1;
+    if (sign != 0 && current != sign) ++changes;
+    sign = current;
+  }
+  return changes;
+}
+
+std::vector<Eigen::Vector2d> polyline(const models::Trajectory& t) {
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(t.samples.size());
+  for (const models::TrajectorySample& s : t.samples) points.emplace_back(s.x, s.y);
+  return points;
+}
+
+// Speeds below this are rest [m/s]: their curvature omega / v is rounding noise.
+constexpr double kRestSpeed = 1e-9;
+
+// The integrator leaves the curvature of a sample at rest (v = 0) undefined (NaN), or computes
+// it from rounding noise; a refined trajectory at rest gets v = omega = 0 and the curvature of
+// its nearest sample in motion (0 when none moves), so that every column is a number.
+void fillCurvatureAtRest(models::Trajectory& trajectory) {
+  std::vector<models::TrajectorySample>& s = trajectory.samples;
+  for (models::TrajectorySample& sample : s) {
+    if (std::abs(sample.v) < kRestSpeed && std::abs(sample.omega) < kRestSpeed) {
+      sample.v = sample.omega = 0.0;
+      sample.curvature = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (std::isfinite(s[i].curvature)) continue;
+    double value = 0.0;
+    for (std::size_t d = 1; d < s.size(); ++d) {
+      if (i >= d && std::isfinite(s[i - d].curvature)) {
+        value = s[i - d].curvature;
+        break;
+      }
+      if (i + d < s.size() && std::isfinite(s[i + d].curvature)) {
+        value = s[i + d].curvature;
+        break;
+      }
+    }
+    s[i].curvature = value;
+  }
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+}  // namespace
+
+const char* refineMethodName(RefineMethod method) {
+  for (const auto& [m, name] : kMethodNames) {
+    if (m == method) return name;
+  }
+  return "?";
+}
+
+std::optional<RefineMethod> parseRefineMethod(std::string_view name) {
+  for (const auto& [m, text] : kMethodNames) {
+    if (name == text) return m;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> refineMethodNames() {
+  std::vector<std::string> names;
+  for (const auto& entry : kMethodNames) names.emplace_back(entry.second);
+  return names;
+}
+
+std::optional<std::string> validateRefinementOptions(const RefinementOptions& o) {
+  if (!(o.interval_length_m > 0.0) || !std::isfinite(o.interval_length_m)) {
+    return "interval_length_m must be a finite number > 0 (got " +
+           formatNumber(o.interval_length_m) + ")";
+  }
+  if (o.min_intervals < 1) return "min_intervals must be >= 1";
+  if (o.max_intervals < o.min_intervals) return "max_intervals must be >= min_intervals";
+  if (!(o.min_clearance_m >= 0.0) || !std::isfinite(o.min_clearance_m)) {
+    return "min_clearance_m must be a finite number >= 0 (got " + formatNumber(o.min_clearance_m) +
+           ")";
+  }
+  if (!(o.guess_spacing_m > 0.0)) return "guess_spacing_m must be > 0";
+  if (o.margin_retries < 0) return "margin_retries must be >= 0";
+  if (!(o.speed_margin >= 0.0 && o.speed_margin < 0.5)) {
+    return "speed_margin must be in [0, 0.5) (got " + formatNumber(o.speed_margin) + ")";
+  }
+  if (!(o.limit_margin >= 0.0 && o.limit_margin < 0.5)) {
+    return "limit_margin must be in [0, 0.5) (got " + formatNumber(o.limit_margin) + ")";
+  }
+  return ocp::validateTranscriptionOptions(o.transcription);
+}
+
+double RefinementResult::costRatio() const {
+  if (!candidate_figures || !refined_figures || !(candidate_figures->cost > 0.0)) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return refined_figures->cost / candidate_figures->cost;
+}
+
+RefineMethod chooseRefineMethod(const RefinementOptions& options, double length_m,
+                                double min_clearance_m, int curvature_sign_changes,
+                                std::string& rule) {
+  if (options.method != RefineMethod::kAuto) {
+    rule = "as configured";
+    return options.method;
+  }
+  if (length_m > options.parametric_max_length_m) {
+    rule = "collocation: the candidate is " + formatNumber(length_m) +
+           " m long (polynomial controls up to " + formatNumber(options.parametric_max_length_m) +
+           " m)";
+    return RefineMethod::kCollocation;
+  }
+  if (min_clearance_m < options.parametric_min_clearance_m) {
+    rule = "collocation: the candidate passes " + formatNumber(min_clearance_m) +
+           " m from impassable cells (polynomial controls need " +
+           formatNumber(options.parametric_min_clearance_m) +
+           " m: they have no clearance constraint)";
+    return RefineMethod::kCollocation;
+  }
+  if (curvature_sign_changes > options.parametric_max_curvature_sign_changes) {
+    rule = "collocation: the candidate's curvature changes sign " +
+           std::to_string(curvature_sign_changes) + " times (the yaw-rate polynomial " +
+           "follows at most " + std::to_string(options.parametric_max_curvature_sign_changes) + ")";
+    return RefineMethod::kCollocation;
+  }
+  rule = "ipopt (polynomial controls): short (" + formatNumber(length_m) +
+         " m), clear of obstacles (" + formatNumber(min_clearance_m) + " m) and few turns (" +
+         std::to_string(curvature_sign_changes) + " curvature sign changes)";
+  return RefineMethod::kIpopt;
+}
+
+CandidateRefiner::CandidateRefiner(const PlanningProblem& problem,
+                                   const ocp::BoundaryValueProblem& bvp,
+                                   const ReferenceFrames& frames, const RefinementOptions& options)
+    : problem_(&problem),
+      bvp_(&bvp),
+      frames_(&frames),
+      options_(options),
+      clearance_(*problem.map) {}
+
+TrajectoryFigures CandidateRefiner::measure(const models::Trajectory& trajectory,
+                                            const CheckTolerances& tolerances) const {
+  TrajectoryFigures f;
+  const std::vector<models::TrajectorySample>& s = trajectory.samples;
+  const bool dwell = bvp_->cost.kind == ocp::CostKind::kSlopeDwell;
+  const auto integrand = [&](const models::TrajectorySample& x) {
+    return dwell ? 1.0 + bvp_->cost.alpha * (x.roll * x.roll + x.pitch * x.pitch) : 1.0;
+  };
+  f.min_clearance_m = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    f.max_abs_pitch = std::max(f.max_abs_pitch, std::abs(s[i].pitch));
+    f.max_abs_roll = std::max(f.max_abs_roll, std::abs(s[i].roll));
+    f.max_speed = std::max(f.max_speed, s[i].v);
+    if (const std::optional<terrain::Clearance> c = clearance_.at({s[i].x, s[i].y})) {
+      f.min_clearance_m = std::min(f.min_clearance_m, c->distance);
+    }
+    if (i > 0) f.cost += 0.5 * (integrand(s[i - 1]) + integrand(s[i])) * (s[i].t - s[i - 1].t);
+  }
+  if (!s.empty()) f.duration_s = s.back().t - s.front().t;
+  f.length_m = trajectory.planarLength();
+  f.check = TrajectoryChecker(*problem_, tolerances).check(trajectory, true);
+  f.homotopy = frames_->signatureOf(polyline(trajectory)).toString();
+  return f;
+}
+
+RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) const {
+  const auto started = std::chrono::steady_clock::now();
+  RefinementResult out;
+  out.method = options_.method;
+  const auto finish = [&](ocp::SolveStatus status, std::string reason) -> RefinementResult& {
+    out.status = status;
+    out.reason = std::move(reason);
+    out.solve_time_ms = millisecondsSince(started);
+    return out;
+  };
+  if (std::optional<std::string> why = validateRefinementOptions(options_)) {
+    return finish(ocp::SolveStatus::kError, "refinement options: " + *why);
+  }
+  if (std::optional<std::string> why = candidateError(candidate, problem_->map->geometry())) {
+    return finish(ocp::SolveStatus::kError, *why);
+  }
+
+  // 1. Complete the candidate and measure it.
+  std::string why;
+  std::optional<ocp::TranscriptionGuess> guess =
+      hasTiming(candidate)
+          ? ocp::guessFromTrajectory(candidate, &why)
+          : ocp::guessFromPath(polyline(candidate), *bvp_, options_.guess_spacing_m, &why);
+  if (!guess) return finish(ocp::SolveStatus::kError, "the candidate: " + why);
+  for (std::size_t c = 0; c < models::kTrajectoryColumnCount; ++c) {
+    if (!candidate.has_column[c]) {
+      out.derived_columns.emplace_back(
+          models::trajectoryColumnName(static_cast<TrajectoryColumn>(c)));
+    }
+  }
+  out.candidate = completeCandidate(candidate, *guess);
+  if (!fillAttitude(*problem_->vehicle, out.candidate, why)) {
+    return finish(ocp::SolveStatus::kError, "the candidate: " + why);
+  }
+  out.candidate_figures = measure(out.candidate, CheckTolerances{});
+  const TrajectoryFigures& before = *out.candidate_figures;
+
+  // 2. Choose the method.
+  out.method = chooseRefineMethod(options_, before.length_m, before.min_clearance_m,
+                                  curvatureSignChanges(out.candidate), out.method_rule);
+
+  // 3. Solve; with kAuto, a failed newton falls back to collocation.
+  const auto accept = [&](ocp::SolveStatus status, std::string reason) {
+    out.status = status;
+    out.reason = std::move(reason);
+    if (!out.verified.ok) return;
+    fillCurvatureAtRest(out.verified.trajectory);
+    out.refined_figures = measure(out.verified.trajectory, options_.check);
+    const TrajectoryFigures& after = *out.refined_figures;
+    out.homotopy_kept = after.homotopy == before.homotopy;
+    if (out.status != ocp::SolveStatus::kConverged) return;
+    if (!after.check.ok()) {
+      out.status = ocp::SolveStatus::kInfeasible;
+      out.reason = "the independent re-check of the refined trajectory: " + after.check.summary();
+    } else if (!out.homotopy_kept) {
+      out.status = ocp::SolveStatus::kInfeasible;
+      out.reason = "the refined trajectory left the candidate's homotopy class ('" +
+                   before.homotopy + "' -> '" + after.homotopy + "')";
+    }
+  };
+
+  if (out.method == RefineMethod::kNewton || out.method == RefineMethod::kIpopt) {
+    // A linear speed polynomial cannot leave and return to rest: a cubic can.
+    ocp::BoundaryValueProblem parametric = *bvp_;
+    if (parametric.start.v == 0.0 && parametric.goal.v == 0.0 && parametric.orders.speed < 3) {
+      parametric.orders.speed = 3;
+    }
+    ocp::BoundaryValueOptions settings = options_.parametric;
+    settings.method = out.method == RefineMethod::kNewton ? ocp::BoundaryValueMethod::kNewton
+                                                          : ocp::BoundaryValueMethod::kIpopt;
+    out.parametric =
+        ocp::solveBoundaryValue(*problem_->vehicle, parametric, settings, problem_->map);
+    out.verified = out.parametric->verified;
+    out.history = out.parametric->solver.history;
+    out.iterations = out.parametric->solver.iterations;
+    accept(out.parametric->status, out.parametric->reason);
+    if (out.status == ocp::SolveStatus::kConverged || options_.method != RefineMethod::kAuto) {
+      return finish(out.status, out.reason);
+    }
+    out.method_rule += "; ipopt ended " + std::string(ocp::solveStatusName(out.status)) + " (" +
+                       out.reason + "), so collocation";
+    out.method = RefineMethod::kCollocation;
+    out.refined_figures.reset();
+    out.parametric.reset();
+  }
+
+  transcribe(*guess, before, out);
+  accept(out.status, out.reason);
+  return finish(out.status, out.reason);
+}
+
+void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
+                                  const TrajectoryFigures& before, RefinementResult& out) const {
+  ocp::DirectTranscriptionOptions transcription = options_.transcription;
+  if (out.method == RefineMethod::kShooting) {
+    transcription.scheme = ocp::TranscriptionScheme::kMultipleShooting;
+  } else if (transcription.scheme == ocp::TranscriptionScheme::kMultipleShooting) {
+    transcription.scheme = ocp::TranscriptionScheme::kHermiteSimpson;
+  }
+  transcription.intervals =
+      std::clamp(static_cast<int>(std::ceil(before.length_m / options_.interval_length_m)),
+                 options_.min_intervals, options_.max_intervals);
+  const bool has_obstacles = before.min_clearance_m < 0.5 * 1e3;
+  if (has_obstacles) {
+    out.clearance_used_m =
+        std::max(0.0, std::min(options_.min_clearance_m, 0.5 * before.min_clearance_m));
+    transcription.model.clearance = {&clearance_, out.clearance_used_m};
+  }
+  // Verified against the true limits, and against lethal cells only (clearance >= 0) rather
+  // than the clearance the solver kept.
+  ocp::TranscriptionModelOptions verification = transcription.model;
+  verification.clearance.min_clearance = 0.0;
+  const ocp::TranscriptionModel model(*problem_->vehicle, *bvp_, verification);
+  const ocp::ConvergenceCriteria& criteria = options_.parametric.criteria;
+
+  // Solved with the limits tightened by the margins; a solution whose re-simulation still
+  // breaks a limit between the points is solved again from itself, with twice the intervals,
+  // then with wider margins.
+  double speed_margin = options_.speed_margin, limit_margin = options_.limit_margin;
+  ocp::TranscriptionGuess start = guess;
+  out.history.clear();
+  for (int round = 0; round <= options_.margin_retries; ++round) {
+    ocp::BoundaryValueProblem tightened = *bvp_;
+    tightened.limits.v_max *= 1.0 - speed_margin;
+    tightened.limits.omega_max *= 1.0 - speed_margin;
+    for (double* limit : {&tightened.limits.kappa_max, &tightened.limits.sigma_max,
+                          &tightened.limits.pitch_max, &tightened.limits.roll_max}) {
+      *limit *= 1.0 - limit_margin;
+    }
+    out.speed_margin_used = speed_margin;
+    out.limit_margin_used = limit_margin;
+    out.margin_rounds = round + 1;
+    out.transcription =
+        ocp::solveDirectTranscription(*problem_->vehicle, tightened, start, transcription);
+    const ocp::TranscriptionSolution& solution = *out.transcription;
+    out.intervals = static_cast<int>(solution.mesh.size()) - 1;
+    for (ocp::IterationRecord record : solution.result.history) {
+      record.iteration += out.iterations;
+      out.history.push_back(record);
+    }
+    out.iterations += solution.result.iterations;
+    out.verified = solution.points.empty()
+                       ? ocp::VerifiedTrajectory{}
+                       : ocp::verifyTranscriptionSolution(model, solution, problem_->map);
+    out.status = solution.result.status;
+    out.reason = solution.result.reason;
+    if (out.status != ocp::SolveStatus::kConverged) return;
+    const double position = out.verified.terminal_error.head<2>().norm();
+    const double heading = std::abs(out.verified.terminal_error.z());
+    if (!out.verified.ok) {
+      out.status = ocp::SolveStatus::kDiverged;
+      out.reason = "the re-simulation failed: " + out.verified.message;
+      return;
+    }
+    if (position > criteria.position_m || heading > criteria.heading_rad) {
+      out.status = ocp::SolveStatus::kDiverged;
+      out.reason = "the re-simulated trajectory ends " + formatNumber(position) + " m, " +
+                   formatNumber(heading) + " rad from the goal (tolerance " +
+                   formatNumber(criteria.position_m) + " m, " + formatNumber(criteria.heading_rad) +
+                   " rad): shorten refine.interval_length_m";
+      return;
+    }
+    if (out.verified.violation.amount <= options_.parametric.limit_tolerance) return;
+    out.status = ocp::SolveStatus::kInfeasible;
+    out.reason = "the re-simulated trajectory breaks " + out.verified.violation.limit + " by " +
+                 formatNumber(out.verified.violation.amount) + " between the points (margins " +
+                 formatNumber(speed_margin) + ", " + formatNumber(limit_margin) + ")";
+    start = solution.asGuess();
+    // The overshoot between points shrinks with the interval: first twice the intervals, then
+    // wider margins (which cost time).
+    if (round == 0 && 2 * transcription.intervals <= options_.max_intervals) {
+      transcription.intervals *= 2;
+    } else {
+      speed_margin = std::min(0.25, 4.0 * speed_margin);
+      limit_margin = std::min(0.25, 2.0 * limit_margin);
+    }
+  }
+}
+
+}  // namespace terratraj::search

@@ -1,0 +1,300 @@
+// `terratraj refine`, `plan --refine`, `--plot` and the demo, end to end on small maps: the
+// contract's reports, the files, exit statuses, and each refinement checked from its CSV.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "terratraj/apps/cli.hpp"
+#include "terratraj/models/trajectory_csv.hpp"
+#include "terratraj/terrain/raster_io.hpp"
+
+namespace terratraj::apps {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int status;
+  std::string out;
+  std::string err;
+};
+
+CliRun run(std::vector<std::string> args) {
+  args.insert(args.begin(), "terratraj");
+  std::vector<const char*> argv;
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  const int status = runCli(static_cast<int>(argv.size()), argv.data(), out, err);
+  return {status, out.str(), err.str()};
+}
+
+// A problem on a generated map of 24 m x 24 m from (2.4, 12) to (21.6, 12), at rest, heading
+// east; `extra` is appended as more YAML.
+std::string problemYaml(const std::string& kind, const std::string& extra = "") {
+  return "terrain:\n  generate: {kind: " + kind +
+         ", rows: 96, cols: 96, cell: 0.25, seed: 2}\n"
+         "vehicle:\n  model: point\n"
+         "  limits: {v_max: 1.0, a_max: 0.5, omega_max: 1.0, kappa_max: 1.0, sigma_max: 0.5,\n"
+         "           pitch_max_deg: 25, roll_max_deg: 25}\n"
+         "start: {x: 2.4, y: 12.0, heading_deg: 0, v: 0.0, omega: 0.0}\n"
+         "goal:  {x: 21.6, y: 12.0, heading_deg: 0, v: 0.0, omega: 0.0}\n" +
+         extra;
+}
+
+// The PNG signature.
+bool isPng(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  char header[8] = {};
+  in.read(header, 8);
+  return in && std::string(header + 1, 3) == "PNG" && fs::file_size(file) > 10000;
+}
+
+class RefineCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("terratraj_refine_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    ::setenv("TERRATRAJ_CACHE_DIR", path("cache").c_str(), 1);
+  }
+  void TearDown() override {
+    ::unsetenv("TERRATRAJ_CACHE_DIR");
+    fs::remove_all(dir_);
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name)) << text;
+    return path(name);
+  }
+  fs::path dir_;
+};
+
+// Checks a refined trajectory from its CSV alone: from the start to the goal, within v_max.
+void expectReachesTheGoal(const std::string& csv) {
+  const models::Trajectory t = models::readTrajectoryCsv(csv);
+  ASSERT_GE(t.samples.size(), 2u);
+  EXPECT_NEAR(t.samples.front().x, 2.4, 1e-6);
+  EXPECT_NEAR(t.samples.front().y, 12.0, 1e-6);
+  EXPECT_NEAR(t.samples.back().x, 21.6, 1e-3);
+  EXPECT_NEAR(t.samples.back().y, 12.0, 1e-3);
+  for (const models::TrajectorySample& s : t.samples) {
+    EXPECT_LE(s.v, 1.0 + 1e-3);
+    EXPECT_TRUE(std::isfinite(s.curvature));
+  }
+}
+
+TEST_F(RefineCommandTest, PlanRefineOnForestKeepsEveryClassAndFollowsTheContract) {
+  const std::string problem =
+      write("forest.yaml", problemYaml("forest", "planner: {kind: taeasl, time_limit_s: 2.0}\n"));
+  const CliRun r = run({"plan", problem, "--refine", "--out-dir", path("out"), "--json"});
+  ASSERT_EQ(r.status, kExitSuccess) << r.err << r.out;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["status"], "solved");
+  ASSERT_GE(json["solutions"].size(), 2u);
+  EXPECT_EQ(json["refine"]["candidates"], json["solutions"].size());
+  for (const nlohmann::json& s : json["solutions"]) {
+    SCOPED_TRACE(s.dump());
+    ASSERT_TRUE(s.contains("refined"));
+    const nlohmann::json& refined = s["refined"];
+    for (const char* key :
+         {"status", "cost_s", "file", "method", "iterations", "homotopy", "homotopy_kept",
+          "max_abs_pitch_rad", "max_abs_roll_rad", "constraint_violation", "cost_ratio"}) {
+      EXPECT_TRUE(refined.contains(key)) << key;
+    }
+    EXPECT_EQ(refined["status"], "converged");
+    EXPECT_EQ(refined["method"], "collocation");
+    // The class the planner named is the one the refinement started in and kept.
+    EXPECT_EQ(s["homotopy_frames"], s["homotopy"]);
+    EXPECT_EQ(refined["homotopy"], s["homotopy"]);
+    EXPECT_TRUE(refined["homotopy_kept"].get<bool>());
+    EXPECT_LE(refined["constraint_violation"].get<double>(), 1e-3);  // the limit tolerance
+    EXPECT_TRUE(refined["check"]["ok"].get<bool>());
+    EXPECT_TRUE(s.contains("max_abs_pitch_rad"));
+    expectReachesTheGoal(refined["file"].get<std::string>());
+  }
+}
+
+TEST_F(RefineCommandTest, PlanRefineWithThePrmOnHillsAndCorridorIsFaster) {
+  for (const char* kind : {"hills", "corridor"}) {
+    SCOPED_TRACE(kind);
+    const std::string problem =
+        write(std::string(kind) + ".yaml",
+              problemYaml(kind, "planner: {kind: prm, time_limit_s: 0.5, seed: 4}\n"));
+    const CliRun r = run({"plan", problem, "--refine", "--out-dir", path(kind), "--json"});
+    ASSERT_EQ(r.status, kExitSuccess) << r.err << r.out;
+    const nlohmann::json json = nlohmann::json::parse(r.out);
+    const nlohmann::json& refined = json["solutions"][0]["refined"];
+    EXPECT_EQ(refined["status"], "converged") << refined.dump();
+    EXPECT_LT(refined["cost_s"].get<double>(), json["solutions"][0]["cost_s"].get<double>() + 1.0);
+    expectReachesTheGoal(refined["file"].get<std::string>());
+  }
+}
+
+TEST_F(RefineCommandTest, RefinesAnXyPathAndReportsBothSides) {
+  const std::string problem = write("hills.yaml", problemYaml("hills"));
+  const std::string candidate = write("path.csv", "x,y\n2.4,12\n8,14.5\n14,14.5\n21.6,12\n");
+  const CliRun r = run({"refine", problem, "--candidate", candidate, "--out", path("r.csv"),
+                        "--plot", path("plots/refine.png"), "--json"});
+  ASSERT_EQ(r.status, kExitSuccess) << r.err << r.out;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  for (const char* key : {"status", "method", "iterations", "solve_time_ms", "final_time_s", "cost",
+                          "length_m", "terminal_error", "max_abs_pitch_rad", "max_abs_roll_rad",
+                          "max_speed", "constraint_violation", "history"}) {
+    EXPECT_TRUE(json.contains(key)) << key;  // the contract's solve / refine report
+  }
+  EXPECT_EQ(json["status"], "converged");
+  EXPECT_LT(json["terminal_error"]["position_m"].get<double>(), 1e-3);
+  EXPECT_FALSE(json["history"].empty());
+  const nlohmann::json& before = json["candidate"];
+  EXPECT_EQ(before["file"], candidate);
+  EXPECT_THAT(before["derived_columns"].dump(), HasSubstr("\"t\""));
+  EXPECT_GT(before["cost"].get<double>(), json["cost"].get<double>());
+  EXPECT_LT(json["cost_ratio"].get<double>(), 1.0);
+  EXPECT_TRUE(json["homotopy"]["kept"].get<bool>());
+  EXPECT_EQ(json["file"], path("r.csv"));
+  expectReachesTheGoal(path("r.csv"));
+  ASSERT_EQ(json["plots"]["status"], "ok") << json["plots"].dump();
+  EXPECT_TRUE(isPng(path("plots/refine.png")));
+  EXPECT_TRUE(isPng(path("plots/refine-profiles.png")));
+  EXPECT_TRUE(isPng(path("plots/refine-convergence.png")));
+
+  // Text mode: candidate beside refinement.
+  const CliRun text = run({"refine", problem, "--candidate", candidate});
+  EXPECT_EQ(text.status, kExitSuccess);
+  EXPECT_THAT(text.out, HasSubstr("candidate"));
+  EXPECT_THAT(text.out, HasSubstr("refined"));
+}
+
+TEST_F(RefineCommandTest, UnusableCandidatesExit2WithTheReport) {
+  const std::string problem = write("hills.yaml", problemYaml("hills"));
+  struct Case {
+    const char* csv;
+    const char* message;
+  };
+  for (const Case& c : {Case{"x,y\n2.4,12\n", "single point"},
+                        Case{"x,y\n2.4,12\n12,40\n21.6,12\n", "leaves the map"},
+                        Case{"x,y\n2.4,12\nnan,12\n21.6,12\n", "not a finite number"}}) {
+    SCOPED_TRACE(c.csv);
+    const std::string candidate = write("bad.csv", c.csv);
+    const CliRun r = run({"refine", problem, "--candidate", candidate, "--json"});
+    EXPECT_EQ(r.status, kExitBadInput);
+    EXPECT_THAT(r.err, HasSubstr("bad.csv"));
+    EXPECT_THAT(r.err, HasSubstr(c.message));
+    const nlohmann::json json = nlohmann::json::parse(r.out);
+    EXPECT_EQ(json["status"], "error");
+    EXPECT_THAT(json["error"].get<std::string>(), HasSubstr(c.message));
+  }
+  // No such file, no x column, a file that is not CSV.
+  EXPECT_EQ(run({"refine", problem, "--candidate", path("missing.csv")}).status, kExitBadInput);
+  EXPECT_EQ(run({"refine", problem, "--candidate", write("noxy.csv", "t,v\n0,0\n1,1\n")}).status,
+            kExitBadInput);
+  EXPECT_EQ(run({"refine", problem}).status, kExitBadInput);  // --candidate is required
+  EXPECT_EQ(run({"refine", problem, "--candidate", write("ok.csv", "x,y\n2.4,12\n21.6,12\n"),
+                 "--method", "magic"})
+                .status,
+            kExitBadInput);
+}
+
+TEST_F(RefineCommandTest, AFailedRefinementStillReportsTheCandidateAndExits1) {
+  const std::string problem = write(
+      "hills.yaml", problemYaml("hills", "refine: {method: collocation, max_iterations: 1}\n"));
+  const std::string candidate = write("path.csv", "x,y\n2.4,12\n8,14.5\n14,14.5\n21.6,12\n");
+  const CliRun r = run({"refine", problem, "--candidate", candidate, "--json"});
+  EXPECT_EQ(r.status, kExitNotSolved) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["status"], "max_iterations");
+  EXPECT_FALSE(json["reason"].get<std::string>().empty());
+  EXPECT_EQ(json["max_iterations"], 1);
+  EXPECT_TRUE(json["candidate"]["cost"].is_number());
+}
+
+TEST_F(RefineCommandTest, BadRefineKeysNameTheKey) {
+  for (const auto& [yaml, key] : std::vector<std::pair<std::string, std::string>>{
+           {"refine: {methd: auto}\n", "methd"},
+           {"refine: {method: magic}\n", "refine.method"},
+           {"refine: {limit_margin: 0.7}\n", "refine.limit_margin"},
+           {"refine: {interval_length_m: -1}\n", "refine.interval_length_m"},
+           {"refine: {min_intervals: 50, max_intervals: 10}\n", "refine.max_intervals"},
+           {"refine: {time_limit_s: .nan}\n", "refine.time_limit_s"}}) {
+    SCOPED_TRACE(yaml);
+    const std::string problem = write("bad.yaml", problemYaml("hills", yaml));
+    const CliRun r = run({"plan", problem, "--refine", "--out-dir", path("out")});
+    EXPECT_EQ(r.status, kExitBadInput);
+    EXPECT_THAT(r.err, HasSubstr(key));
+  }
+}
+
+TEST_F(RefineCommandTest, DemoPlansRefinesAndPlots) {
+  const CliRun r =
+      run({"demo", "--out-dir", path("demo"), "--rows", "96", "--cols", "96", "--json"});
+  ASSERT_EQ(r.status, kExitSuccess) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["status"], "solved");
+  EXPECT_EQ(json["planner"], "taeasl");
+  EXPECT_EQ(terrain::loadElevationMap(path("demo/terrain.tif")).geometry().rows, 96);
+  std::ifstream report(path("demo/report.json"));
+  EXPECT_EQ(nlohmann::json::parse(report), json);
+  ASSERT_GE(json["solutions"].size(), 2u);
+  for (const nlohmann::json& s : json["solutions"]) {
+    EXPECT_TRUE(fs::exists(s["file"].get<std::string>()));
+    EXPECT_EQ(s["refined"]["status"], "converged") << s["refined"].dump();
+    EXPECT_TRUE(fs::exists(s["refined"]["file"].get<std::string>()));
+  }
+  ASSERT_EQ(json["plots"]["status"], "ok") << json["plots"].dump();
+  for (const char* png : {"demo/plot.png", "demo/plot-profiles.png", "demo/plot-convergence.png"}) {
+    EXPECT_TRUE(isPng(path(png))) << png;
+  }
+  // A person reads the text summary.
+  const CliRun text =
+      run({"demo", "--out-dir", path("demo2"), "--rows", "96", "--cols", "96", "--no-plot"});
+  ASSERT_EQ(text.status, kExitSuccess) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("refined"));
+  EXPECT_THAT(text.out, HasSubstr("class"));
+  EXPECT_FALSE(fs::exists(path("demo2/plot.png")));
+}
+
+TEST_F(RefineCommandTest, SolvePlotsItsTrajectory) {
+  const std::string problem =
+      write("solve.yaml",
+            "terrain:\n  generate: {kind: hills, rows: 96, cols: 96, cell: 0.25, seed: 2}\n"
+            "vehicle: {model: point}\n"
+            "start: {x: 6.0, y: 12.0, heading_deg: 0, v: 0.5}\n"
+            "goal:  {x: 11.0, y: 13.0, heading_deg: 20, v: 0.5}\n");
+  const CliRun r = run({"solve", problem, "--plot", path("solve.png"), "--json"});
+  ASSERT_EQ(r.status, kExitSuccess) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  ASSERT_EQ(json["plots"]["status"], "ok") << json["plots"].dump();
+  EXPECT_TRUE(isPng(path("solve.png")));
+  EXPECT_TRUE(isPng(path("solve-profiles.png")));
+  EXPECT_TRUE(isPng(path("solve-convergence.png")));
+  EXPECT_TRUE(fs::exists(path("solve-trajectory.csv")));
+}
+
+TEST_F(RefineCommandTest, PlotWithoutMatplotlibIsAWarningNotACrash) {
+  ::setenv("TERRATRAJ_PYTHON", "/nonexistent/python3", 1);
+  const std::string problem = write("hills.yaml", problemYaml("hills"));
+  const std::string candidate = write("path.csv", "x,y\n2.4,12\n21.6,12\n");
+  const CliRun r =
+      run({"refine", problem, "--candidate", candidate, "--plot", path("p.png"), "--json"});
+  ::unsetenv("TERRATRAJ_PYTHON");
+  EXPECT_EQ(r.status, kExitSuccess) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["plots"]["status"], "error");
+  EXPECT_THAT(json["plots"]["error"].get<std::string>(), HasSubstr("/nonexistent/python3"));
+  EXPECT_THAT(r.err, HasSubstr("--plot"));
+}
+
+}  // namespace
+}  // namespace terratraj::apps

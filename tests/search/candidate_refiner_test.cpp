@@ -1,0 +1,229 @@
+// CandidateRefiner: candidates from the planners and hand-made paths refined into locally
+// optimal trajectories, checked independently (re-simulation, TrajectoryChecker, signature).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "lattice_fixtures.hpp"
+#include "search_fixtures.hpp"
+#include "terratraj/search/candidate_refiner.hpp"
+#include "terratraj/search/kinodynamic_prm.hpp"
+#include "terratraj/search/trajectory_checker.hpp"
+#include "terratraj/terrain/obstacle_clusters.hpp"
+
+namespace terratraj::search {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::TestWorld;
+
+// The boundary-value form of a world's problem (exact start and goal, minimum time).
+ocp::BoundaryValueProblem bvpOf(const PlanningProblem& p) {
+  ocp::BoundaryValueProblem bvp;
+  bvp.start = {p.start.position.x(), p.start.position.y(), p.start.heading, p.start.v, 0.0};
+  bvp.goal = {p.goal.position.x(), p.goal.position.y(), p.goal.heading, p.goal.v, 0.0};
+  bvp.limits = p.limits;
+  return bvp;
+}
+
+ReferenceFrames framesOf(const TestWorld& world) {
+  ReferenceFrameOptions options;
+  options.anchor = {0.5 * world.map.geometry().width(), 0.5 * world.map.geometry().height()};
+  options.frame_radius = 100.0;
+  return ReferenceFrames::build(world.map, terrain::findObstacleClusters(world.map), options);
+}
+
+// An x,y-only path through the given waypoints.
+models::Trajectory xyPath(const std::vector<Eigen::Vector2d>& points) {
+  models::Trajectory path;
+  path.has_column[static_cast<std::size_t>(models::TrajectoryColumn::kX)] = true;
+  path.has_column[static_cast<std::size_t>(models::TrajectoryColumn::kY)] = true;
+  for (const Eigen::Vector2d& p : points) {
+    models::TrajectorySample s = models::TrajectorySample::unknown();
+    s.x = p.x();
+    s.y = p.y();
+    path.samples.push_back(s);
+  }
+  return path;
+}
+
+// Everything a converged refinement must satisfy, checked here without the refiner's word:
+// the trajectory starts at the start and ends at the goal, the independent checker finds no
+// violation, and its signature is the candidate's.
+void expectSound(const RefinementResult& r, const PlanningProblem& problem,
+                 const ReferenceFrames& frames) {
+  ASSERT_EQ(r.status, ocp::SolveStatus::kConverged) << r.reason;
+  const models::Trajectory& t = r.verified.trajectory;
+  ASSERT_GE(t.samples.size(), 2u);
+  EXPECT_NEAR(t.samples.front().x, problem.start.position.x(), 1e-6);
+  EXPECT_NEAR(t.samples.front().y, problem.start.position.y(), 1e-6);
+  EXPECT_NEAR(t.samples.back().x, problem.goal.position.x(), 1e-3);
+  EXPECT_NEAR(t.samples.back().y, problem.goal.position.y(), 1e-3);
+  CheckTolerances tolerances;
+  tolerances.relative = 1e-3;
+  const CheckReport check = TrajectoryChecker(problem, tolerances).check(t);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  std::vector<Eigen::Vector2d> xy;
+  for (const models::TrajectorySample& s : t.samples) xy.emplace_back(s.x, s.y);
+  std::vector<Eigen::Vector2d> candidate_xy;
+  for (const models::TrajectorySample& s : r.candidate.samples) candidate_xy.emplace_back(s.x, s.y);
+  EXPECT_EQ(frames.signatureOf(xy), frames.signatureOf(candidate_xy));
+  EXPECT_TRUE(r.homotopy_kept);
+}
+
+// The PRM's first solution (anytime, not yet improved) on hills: the refinement is faster,
+// although it drives to the goal itself where the candidate stopped in the goal region.
+TEST(CandidateRefiner, PrmCandidateOnHillsBecomesFasterAndSound) {
+  auto world = testing::makeWorld(terrain::TerrainKind::kHills, 96, 2);
+  PrmOptions prm;
+  prm.seed = 3;
+  KinodynamicPrm planner(world->problem, prm);
+  const PlanResult plan = planner.solve(TerminationCondition::timeLimit(1.0).stopAtFirstSolution());
+  ASSERT_EQ(plan.status, PlanStatus::kSolved) << plan.reason;
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  const ReferenceFrames frames = framesOf(*world);
+  const CandidateRefiner refiner(world->problem, bvp, frames);
+  const RefinementResult r = refiner.refine(plan.trajectory);
+  expectSound(r, world->problem, frames);
+  EXPECT_EQ(r.method, RefineMethod::kCollocation) << r.method_rule;  // 19 m: too long
+  ASSERT_TRUE(r.candidate_figures && r.refined_figures);
+  EXPECT_NEAR(r.candidate_figures->duration_s, plan.best_cost_s, 1e-9);
+  EXPECT_LT(r.refined_figures->duration_s, r.candidate_figures->duration_s);
+  // The bang-bang bound along the straight line is a lower bound of every trajectory.
+  const double d = (world->problem.goal.position - world->problem.start.position).norm();
+  const models::VehicleLimits& l = world->problem.limits;
+  EXPECT_GT(r.refined_figures->duration_s, d / l.v_max + l.v_max / l.a_max - 1e-6);
+  // The report's figures are the re-simulation's.
+  EXPECT_NEAR(r.refined_figures->duration_s, r.verified.final_time, 1e-9);
+  EXPECT_FALSE(r.history.empty());
+}
+
+TEST(CandidateRefiner, KeepsEachSideOfABlock) {
+  terrain::ElevationMap map = testing::flatMap(64, 96);  // 24 m x 16 m
+  testing::block(map, 10.0, 9.0, 14.0, 12.0);  // north of the anchor (12, 8): a frame north
+  auto world = testing::worldOn(std::move(map), {3.0, 8.0}, {21.0, 8.0});
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  const ReferenceFrames frames = framesOf(*world);
+  ASSERT_EQ(frames.size(), 1u);
+  const CandidateRefiner refiner(world->problem, bvp, frames);
+  std::vector<std::string> classes;
+  for (const double side : {13.8, 6.0}) {  // north of the block, south of it
+    SCOPED_TRACE(side);
+    const RefinementResult r =
+        refiner.refine(xyPath({{3.0, 8.0}, {8.0, side}, {16.0, side}, {21.0, 8.0}}));
+    expectSound(r, world->problem, frames);
+    classes.push_back(r.refined_figures->homotopy);
+    // It stays on its side where it passes the block, at least the clearance away.
+    for (const models::TrajectorySample& s : r.verified.trajectory.samples) {
+      if (s.x > 10.0 && s.x < 14.0) {
+        EXPECT_TRUE(side > 8.0 ? s.y > 12.0 + 0.2 : s.y < 9.0 - 0.2) << s.x << ", " << s.y;
+      }
+    }
+    // Shorter than the candidate's detour, and with every column derived.
+    EXPECT_LT(r.refined_figures->length_m, r.candidate_figures->length_m);
+    EXPECT_THAT(r.derived_columns, ::testing::Contains("t"));
+    EXPECT_THAT(r.derived_columns, ::testing::Contains("pitch"));
+  }
+  EXPECT_NE(classes[0], classes[1]);
+}
+
+TEST(CandidateRefiner, AutoPicksNewtonForShortClearPathsAndCollocationOtherwise) {
+  const RefinementOptions options;
+  std::string rule;
+  EXPECT_EQ(chooseRefineMethod(options, 6.0, 1e3, 0, rule), RefineMethod::kIpopt);
+  EXPECT_THAT(rule, HasSubstr("polynomial"));
+  EXPECT_EQ(chooseRefineMethod(options, 25.0, 1e3, 0, rule), RefineMethod::kCollocation);
+  EXPECT_THAT(rule, HasSubstr("long"));
+  EXPECT_EQ(chooseRefineMethod(options, 6.0, 0.5, 0, rule), RefineMethod::kCollocation);
+  EXPECT_THAT(rule, HasSubstr("impassable"));
+  EXPECT_EQ(chooseRefineMethod(options, 6.0, 1e3, 5, rule), RefineMethod::kCollocation);
+  EXPECT_THAT(rule, HasSubstr("sign"));
+  RefinementOptions shooting;
+  shooting.method = RefineMethod::kShooting;
+  EXPECT_EQ(chooseRefineMethod(shooting, 6.0, 1e3, 0, rule), RefineMethod::kShooting);
+
+  // End to end on open flat ground: a short gentle S-path is refined with polynomial controls.
+  auto world = testing::worldOn(testing::flatMap(64, 64), {4.0, 8.0}, {10.0, 9.0});
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  const ReferenceFrames frames = framesOf(*world);
+  const CandidateRefiner refiner(world->problem, bvp, frames);
+  const RefinementResult r = refiner.refine(xyPath({{4.0, 8.0}, {7.0, 8.3}, {10.0, 9.0}}));
+  EXPECT_EQ(r.method, RefineMethod::kIpopt) << r.method_rule;
+  expectSound(r, world->problem, frames);
+  ASSERT_TRUE(r.parametric.has_value());
+}
+
+TEST(CandidateRefiner, UnusableCandidatesAreErrorsNamingTheSample) {
+  auto world = testing::worldOn(testing::flatMap(64, 64), {4.0, 8.0}, {10.0, 8.0});
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  const ReferenceFrames frames;
+  const CandidateRefiner refiner(world->problem, bvp, frames);
+
+  const RefinementResult single = refiner.refine(xyPath({{4.0, 8.0}}));
+  EXPECT_EQ(single.status, ocp::SolveStatus::kError);
+  EXPECT_THAT(single.reason, HasSubstr("single point"));
+  const RefinementResult same = refiner.refine(xyPath({{4.0, 8.0}, {4.0, 8.0}, {4.0, 8.0}}));
+  EXPECT_EQ(same.status, ocp::SolveStatus::kError);
+  EXPECT_THAT(same.reason, HasSubstr("single point"));
+
+  const RefinementResult off = refiner.refine(xyPath({{4.0, 8.0}, {7.0, 30.0}, {10.0, 8.0}}));
+  EXPECT_EQ(off.status, ocp::SolveStatus::kError);
+  EXPECT_THAT(off.reason, HasSubstr("sample 1"));
+  EXPECT_THAT(off.reason, HasSubstr("leaves the map"));
+
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const RefinementResult not_finite = refiner.refine(xyPath({{4.0, 8.0}, {nan, 8.0}}));
+  EXPECT_EQ(not_finite.status, ocp::SolveStatus::kError);
+  EXPECT_THAT(not_finite.reason, HasSubstr("sample 1"));
+
+  RefinementOptions bad;
+  bad.interval_length_m = 0.0;
+  const CandidateRefiner bad_refiner(world->problem, bvp, frames, bad);
+  const RefinementResult r = bad_refiner.refine(xyPath({{4.0, 8.0}, {10.0, 8.0}}));
+  EXPECT_EQ(r.status, ocp::SolveStatus::kError);
+  EXPECT_THAT(r.reason, HasSubstr("interval_length_m"));
+}
+
+TEST(CandidateRefiner, ACandidateThroughLethalCellsIsReportedAndRepaired) {
+  terrain::ElevationMap map = testing::flatMap(64, 96);
+  testing::block(map, 11.0, 7.0, 13.0, 9.0);  // on the straight line
+  auto world = testing::worldOn(std::move(map), {3.0, 8.0}, {21.0, 8.0});
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  const ReferenceFrames frames = framesOf(*world);
+  const CandidateRefiner refiner(world->problem, bvp, frames);
+  const RefinementResult r = refiner.refine(xyPath({{3.0, 8.0}, {12.0, 8.3}, {21.0, 8.0}}));
+  ASSERT_TRUE(r.candidate_figures.has_value());
+  EXPECT_FALSE(r.candidate_figures->check.ok());
+  EXPECT_THAT(r.candidate_figures->check.summary(), HasSubstr("lethal"));
+  // The refinement is reported whatever its outcome; when it converged it is clear of the block.
+  if (r.status == ocp::SolveStatus::kConverged) {
+    ASSERT_TRUE(r.refined_figures.has_value());
+    EXPECT_TRUE(r.refined_figures->check.ok()) << r.refined_figures->check.summary();
+  } else {
+    EXPECT_FALSE(r.reason.empty());
+  }
+}
+
+TEST(CandidateRefiner, AFailedSolveKeepsTheCandidateAndSaysWhy) {
+  auto world = testing::makeWorld(terrain::TerrainKind::kHills, 96, 2);
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  const ReferenceFrames frames = framesOf(*world);
+  RefinementOptions options;
+  options.method = RefineMethod::kCollocation;
+  options.transcription.max_iterations = 2;
+  const CandidateRefiner refiner(world->problem, bvp, frames, options);
+  const Eigen::Vector2d a = world->problem.start.position, b = world->problem.goal.position;
+  const RefinementResult r = refiner.refine(xyPath({a, 0.5 * (a + b) + Eigen::Vector2d(0, 3), b}));
+  EXPECT_EQ(r.status, ocp::SolveStatus::kMaxIterations) << r.reason;
+  EXPECT_FALSE(r.reason.empty());
+  ASSERT_TRUE(r.candidate_figures.has_value());
+  EXPECT_GT(r.candidate_figures->cost, 0.0);
+  EXPECT_EQ(r.iterations, 2);
+}
+
+}  // namespace
+}  // namespace terratraj::search
