@@ -37,8 +37,7 @@
 #include <tuple>
 #include <vector>
 
-#include "terratraj/models/point_attitude_model.hpp"
-#include "terratraj/models/rocker_bogie_attitude_model.hpp"
+#include "bench_worlds.hpp"
 #include "terratraj/search/lattice_graph.hpp"
 #include "terratraj/search/lattice_planner.hpp"
 #include "terratraj/search/primitive_generator.hpp"
@@ -50,8 +49,13 @@
 namespace {
 
 using namespace terratraj;
+using bench::CheckTally;
+using bench::exampleLimits;
+using bench::generate;
+using bench::Vehicle;
+using bench::vehicleName;
+using bench::World;
 
-constexpr double kCell = 0.25;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr int kMapSeeds = 5;     // BM_LatticeFirstSolution
 constexpr int kForestSeeds = 3;  // BM_TaeaslClasses
@@ -61,85 +65,6 @@ using Clock = std::chrono::steady_clock;
 double millisecondsSince(const Clock::time_point& start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
-
-// The problem files' limits (examples/plan_problem.yaml).
-models::VehicleLimits exampleLimits() {
-  models::VehicleLimits limits;
-  limits.v_max = 1.0;
-  limits.a_max = 0.5;
-  limits.omega_max = 1.0;
-  limits.kappa_max = 1.0;
-  limits.sigma_max = 0.5;
-  limits.pitch_max = 17.0 * models::kRadiansPerDegree;
-  limits.roll_max = 20.0 * models::kRadiansPerDegree;
-  return limits;
-}
-
-enum class Vehicle { kPoint, kRockerBogie };
-
-const char* vehicleName(Vehicle vehicle) {
-  return vehicle == Vehicle::kPoint ? "point" : "rocker_bogie";
-}
-
-std::unique_ptr<models::TerrainFollowingModel> makeVehicle(Vehicle vehicle,
-                                                           const terrain::TerrainSurface& surface) {
-  if (vehicle == Vehicle::kRockerBogie) {
-    return std::make_unique<models::RockerBogieAttitudeModel>(surface);
-  }
-  return std::make_unique<models::PointAttitudeModel>(surface);
-}
-
-terrain::ElevationMap generate(terrain::TerrainKind kind, int size, std::uint64_t seed) {
-  terrain::GeneratorOptions options;
-  options.kind = kind;
-  options.rows = options.cols = size;
-  options.cell = kCell;
-  options.seed = seed;
-  return terrain::generateTerrain(options);
-}
-
-struct World {
-  World(terrain::ElevationMap map_in, Vehicle kind, const models::VehicleLimits& limits)
-      : map(std::move(map_in)),
-        surface(map, terrain::Interpolation::kBicubic),
-        vehicle(makeVehicle(kind, surface)),
-        problem(map, *vehicle) {
-    problem.limits = limits;
-  }
-  World(const World&) = delete;
-  World& operator=(const World&) = delete;
-  // Whether the vehicle rests at `p` (heading east) within half its pitch and roll limits:
-  // start and goal are put on moderate ground, not on the edge of what the vehicle can climb.
-  bool moderate(const Eigen::Vector2d& p) const {
-    models::AttitudeWorkspace workspace;
-    models::AttitudeResult result;
-    if (vehicle->compute({p.x(), p.y(), 0.0}, workspace, result) != models::AttitudeStatus::kOk) {
-      return false;
-    }
-    return std::abs(result.attitude.pitch) <= 0.5 * problem.limits.pitch_max &&
-           std::abs(result.attitude.roll) <= 0.5 * problem.limits.roll_max;
-  }
-  // Puts start and goal at the given points (at rest, heading east), each moved north 0.5 m at
-  // a time until it is valid and on moderate ground.
-  bool place(const Eigen::Vector2d& start, const Eigen::Vector2d& goal) {
-    problem.start = search::PlannerState{};
-    problem.start.position = start;
-    problem.goal.position = goal;
-    for (Eigen::Vector2d* p : {&problem.start.position, &problem.goal.position}) {
-      int i = 0;
-      for (; i < 200 && !(moderate(*p) && !problem.validate()); ++i) p->y() += 0.5;
-      if (i == 200) return false;
-    }
-    return !problem.validate();
-  }
-  double distance() const { return (problem.goal.position - problem.start.position).norm(); }
-
-  terrain::ElevationMap map;
-  terrain::TerrainSurface surface;
-  std::unique_ptr<models::TerrainFollowingModel> vehicle;
-  search::PlanningProblem problem;
-  bool placed = false;
-};
 
 // Start and goal 100 m apart across the middle of the map; on maps narrower than 120 m the
 // standard start and goal (10 % and 90 % of the width, mid-height).
@@ -180,47 +105,6 @@ double median(std::vector<double> values) {
 double maximum(const std::vector<double>& values) {
   return values.empty() ? kInfinity : *std::max_element(values.begin(), values.end());
 }
-
-// Collects checker outcomes; failures are named in the benchmark's label ("limit x count, worst
-// amount") so that none goes unseen.
-class CheckTally {
- public:
-  void add(const search::CheckReport& report, const std::string& where) {
-    ++checked_;
-    if (report.ok()) {
-      ++ok_;
-      return;
-    }
-    for (const search::CheckViolation& v : report.violations) {
-      Failure& f = failures_[v.limit];
-      ++f.count;
-      if (v.amount > f.worst) {
-        f.worst = v.amount;
-        f.where = where + " sample " + std::to_string(v.sample);
-      }
-    }
-  }
-  double fraction() const { return checked_ == 0 ? 0.0 : static_cast<double>(ok_) / checked_; }
-  int checked() const { return checked_; }
-  std::string label() const {
-    std::ostringstream text;
-    for (const auto& [limit, f] : failures_) {
-      text << (text.tellp() > 0 ? "; " : "") << "check failed: " << limit << " x" << f.count
-           << " (worst " << f.worst << ", " << f.where << ")";
-    }
-    return text.str();
-  }
-
- private:
-  struct Failure {
-    int count = 0;
-    double worst = 0.0;
-    std::string where;
-  };
-  int checked_ = 0;
-  int ok_ = 0;
-  std::map<std::string, Failure> failures_;
-};
 
 void BM_PrimitiveGeneration(benchmark::State& state) {
   search::PrimitiveGenerationResult result;

@@ -23,15 +23,17 @@
 #include <tuple>
 #include <vector>
 
-#include "terratraj/models/point_attitude_model.hpp"
+#include "bench_worlds.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/terrain/terrain_generator.hpp"
 
 namespace {
 
 using namespace terratraj;
+using bench::exampleLimits;
+using bench::generate;
+using bench::World;
 
-constexpr double kCell = 0.25;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 double longRunSeconds() {
@@ -40,73 +42,12 @@ double longRunSeconds() {
   return value > 0.0 ? value : 30.0;
 }
 
-// The problem files' limits (examples/plan_problem.yaml); pitch_max is the expansiveness knob.
-models::VehicleLimits exampleLimits(double pitch_max_deg = 17.0) {
-  models::VehicleLimits limits;
-  limits.v_max = 1.0;
-  limits.a_max = 0.5;
-  limits.omega_max = 1.0;
-  limits.kappa_max = 1.0;
-  limits.sigma_max = 0.5;
-  limits.pitch_max = pitch_max_deg * models::kRadiansPerDegree;
-  limits.roll_max = 20.0 * models::kRadiansPerDegree;
-  return limits;
-}
-
-struct World {
-  World(terrain::ElevationMap map_in, const models::VehicleLimits& limits)
-      : map(std::move(map_in)),
-        surface(map, terrain::Interpolation::kBicubic),
-        vehicle(surface),
-        problem(map, vehicle) {
-    problem.limits = limits;
-  }
-  // Whether the vehicle rests at `p` (heading east) within half its pitch and roll limits:
-  // start and goal are put on moderate ground, not on the edge of what the vehicle can climb.
-  bool moderate(const Eigen::Vector2d& p) const {
-    models::AttitudeWorkspace workspace;
-    models::AttitudeResult result;
-    if (vehicle.compute({p.x(), p.y(), 0.0}, workspace, result) != models::AttitudeStatus::kOk) {
-      return false;
-    }
-    return std::abs(result.attitude.pitch) <= 0.5 * problem.limits.pitch_max &&
-           std::abs(result.attitude.roll) <= 0.5 * problem.limits.roll_max;
-  }
-  // Puts start and goal at the given points, each moved north 0.5 m at a time until it is
-  // valid and on moderate ground.
-  bool place(const Eigen::Vector2d& start, const Eigen::Vector2d& goal) {
-    problem.start = search::PlannerState{};
-    problem.start.position = start;
-    problem.goal.position = goal;
-    for (Eigen::Vector2d* p : {&problem.start.position, &problem.goal.position}) {
-      int i = 0;
-      for (; i < 200 && !(moderate(*p) && !problem.validate()); ++i) p->y() += 0.5;
-      if (i == 200) return false;
-    }
-    return !problem.validate();
-  }
-  terrain::ElevationMap map;
-  terrain::TerrainSurface surface;
-  models::PointAttitudeModel vehicle;
-  search::PlanningProblem problem;
-};
-
-terrain::ElevationMap generate(terrain::TerrainKind kind, int size, std::uint64_t seed) {
-  terrain::GeneratorOptions options;
-  options.kind = kind;
-  options.rows = options.cols = size;
-  options.cell = kCell;
-  options.seed = seed;
-  return terrain::generateTerrain(options);
-}
-
-// 1024 x 1024 hills, start and goal 100 m apart across the middle.
 World& hills1024(std::uint64_t seed) {
   static std::map<std::uint64_t, std::unique_ptr<World>> worlds;
   std::unique_ptr<World>& world = worlds[seed];
   if (!world) {
     world = std::make_unique<World>(generate(terrain::TerrainKind::kHills, 1024, seed),
-                                    exampleLimits());
+                                    bench::Vehicle::kPoint, exampleLimits());
     world->place({78.0, 128.0}, {178.0, 128.0});
   }
   return *world;
@@ -230,7 +171,7 @@ void reportLongRun(benchmark::State& state, World& world) {
 void BM_Environment(benchmark::State& state) {
   const auto kind = static_cast<terrain::TerrainKind>(state.range(0));
   const int size = static_cast<int>(state.range(1));
-  World world(generate(kind, size, 1), exampleLimits());
+  World world(generate(kind, size, 1), bench::Vehicle::kPoint, exampleLimits());
   const auto [start, goal] = terrain::standardStartGoal(world.map.geometry());
   if (!world.place(start, goal)) {
     state.SkipWithError("no valid start / goal");
@@ -262,7 +203,7 @@ const std::vector<std::tuple<terrain::TerrainKind, double>>& expansivenessVarian
 
 void BM_Expansiveness(benchmark::State& state) {
   const auto [kind, pitch_deg] = expansivenessVariants()[static_cast<std::size_t>(state.range(0))];
-  World world(generate(kind, 256, 1), exampleLimits(pitch_deg));
+  World world(generate(kind, 256, 1), bench::Vehicle::kPoint, exampleLimits(pitch_deg));
   const auto [start, goal] = terrain::standardStartGoal(world.map.geometry());
   if (!world.place(start, goal)) {
     state.SkipWithError("no valid start / goal");

@@ -357,6 +357,8 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
   bool options_ok = ipopt.SetStringValue("sb", "yes") &&
                     ipopt.SetIntegerValue("print_level", options.print_level) &&
                     ipopt.SetStringValue("linear_solver", "mumps") &&
+                    // Deterministic ordering (direct_transcription.cpp says why).
+                    ipopt.SetIntegerValue("mumps_pivot_order", 2) &&
                     ipopt.SetStringValue("hessian_approximation", "limited-memory") &&
                     ipopt.SetIntegerValue("max_iter", options.max_iterations) &&
                     ipopt.SetNumericValue(

@@ -225,6 +225,10 @@ std::optional<std::string> validateRefinementOptions(const RefinementOptions& o)
   }
   if (!(o.guess_spacing_m > 0.0)) return "guess_spacing_m must be > 0";
   if (o.margin_retries < 0) return "margin_retries must be >= 0";
+  if (!(o.coarse_interval_length_m > 0.0) || !std::isfinite(o.coarse_interval_length_m)) {
+    return "coarse_interval_length_m must be a finite number > 0 (got " +
+           formatNumber(o.coarse_interval_length_m) + ")";
+  }
   if (!(o.speed_margin >= 0.0 && o.speed_margin < 0.5)) {
     return "speed_margin must be in [0, 0.5) (got " + formatNumber(o.speed_margin) + ")";
   }
@@ -426,9 +430,7 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
   // breaks a limit between the points is solved again from itself, with twice the intervals,
   // then with wider margins.
   double speed_margin = options_.speed_margin, limit_margin = options_.limit_margin;
-  ocp::TranscriptionGuess start = guess;
-  out.history.clear();
-  for (int round = 0; round <= options_.margin_retries; ++round) {
+  const auto tighten = [&]() {
     ocp::BoundaryValueProblem tightened = *bvp_;
     tightened.limits.v_max *= 1.0 - speed_margin;
     tightened.limits.omega_max *= 1.0 - speed_margin;
@@ -436,6 +438,34 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
                           &tightened.limits.pitch_max, &tightened.limits.roll_max}) {
       *limit *= 1.0 - limit_margin;
     }
+    return tightened;
+  };
+  const auto record = [&](const ocp::TranscriptionSolution& solution) {
+    for (ocp::IterationRecord r : solution.result.history) {
+      r.iteration += out.iterations;
+      out.history.push_back(r);
+    }
+    out.iterations += solution.result.iterations;
+  };
+  ocp::TranscriptionGuess start = guess;
+  out.history.clear();
+  // A coarse mesh first: a wiggly candidate (a PRM's first solution) is straightened there at a
+  // fraction of the cost, and the fine mesh starts from a smooth guess.
+  const int coarse_intervals = std::clamp(
+      static_cast<int>(std::ceil(before.length_m / options_.coarse_interval_length_m)),
+      std::min(options_.min_intervals, transcription.intervals), transcription.intervals);
+  if (coarse_intervals < transcription.intervals / 2) {
+    ocp::DirectTranscriptionOptions coarse = transcription;
+    coarse.intervals = coarse_intervals;
+    const ocp::TranscriptionSolution solution =
+        ocp::solveDirectTranscription(*problem_->vehicle, tighten(), start, coarse);
+    record(solution);
+    out.coarse_intervals = coarse_intervals;
+    out.coarse_status = solution.result.status;
+    if (solution.result.status == ocp::SolveStatus::kConverged) start = solution.asGuess();
+  }
+  for (int round = 0; round <= options_.margin_retries; ++round) {
+    const ocp::BoundaryValueProblem tightened = tighten();
     out.speed_margin_used = speed_margin;
     out.limit_margin_used = limit_margin;
     out.margin_rounds = round + 1;
@@ -443,11 +473,7 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
         ocp::solveDirectTranscription(*problem_->vehicle, tightened, start, transcription);
     const ocp::TranscriptionSolution& solution = *out.transcription;
     out.intervals = static_cast<int>(solution.mesh.size()) - 1;
-    for (ocp::IterationRecord record : solution.result.history) {
-      record.iteration += out.iterations;
-      out.history.push_back(record);
-    }
-    out.iterations += solution.result.iterations;
+    record(solution);
     out.verified = solution.points.empty()
                        ? ocp::VerifiedTrajectory{}
                        : ocp::verifyTranscriptionSolution(model, solution, problem_->map);

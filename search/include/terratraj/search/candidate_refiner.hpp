@@ -62,6 +62,10 @@ struct RefinementOptions {
   double interval_length_m = 0.25;
   int min_intervals = 20;   ///< ... but at least this many, >= 1
   int max_intervals = 800;  ///< ... and at most this many, >= min_intervals
+  /// A first solve on a coarse mesh (one interval per this much length [m], > 0), whose
+  /// solution (when it converges) starts the fine one; skipped when it would not halve the
+  /// intervals.
+  double coarse_interval_length_m = 1.0;
   /// Clearance kept from lethal and no-data cells [m], >= 0; lowered to half the candidate's
   /// own smallest clearance when that is less (a candidate through a narrow gap stays feasible).
   double min_clearance_m = 0.25;
@@ -132,7 +136,9 @@ struct RefinementResult {
   std::optional<TrajectoryFigures> refined_figures;    ///< absent when nothing re-simulated
   bool homotopy_kept = false;
   int intervals = 0;               ///< direct transcription's final interval count
-  int margin_rounds = 0;           ///< direct transcription solves (1 + margin retries used)
+  int coarse_intervals = 0;  ///< the coarse solve's intervals (0: none)
+  ocp::SolveStatus coarse_status = ocp::SolveStatus::kError;  ///< the coarse solve's outcome
+  int margin_rounds = 0;  ///< fine direct transcription solves (1 + margin retries used)
   double speed_margin_used = 0.0;  ///< the margins of the last solve (fractions)
   double limit_margin_used = 0.0;
   double clearance_used_m = 0.0;              ///< the clearance constraint (transcription)
