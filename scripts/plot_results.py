@@ -56,10 +56,15 @@ def draw_map(request, trajectories, out):
     filled = np.where(np.isfinite(z), z, np.nanmin(z) if np.isfinite(z).any() else 0.0)
     light = LightSource(azdeg=315, altdeg=45)
     # LightSource expects row 0 at the top; our rows start in the south: flip for shading only.
+    # The colour scale starts below the lowest height: gist_earth's bottom is black, which is
+    # the colour of no-data cells here.
+    low, high = float(np.min(filled)), float(np.max(filled))
+    vmin = low - 0.2 * max(high - low, 1e-6)
     shaded = light.shade(filled[::-1], cmap=plt.cm.gist_earth, vert_exag=1.0, blend_mode="soft",
-                         dx=cell, dy=cell)[::-1]
+                         dx=cell, dy=cell, vmin=vmin, vmax=high)[::-1]
     ax.imshow(shaded, origin="lower", extent=extent, interpolation="bilinear")
-    elevation = ax.imshow(filled, origin="lower", extent=extent, cmap=plt.cm.gist_earth, alpha=0.0)
+    elevation = ax.imshow(filled, origin="lower", extent=extent, cmap=plt.cm.gist_earth, alpha=0.0,
+                          vmin=vmin, vmax=high)
     overlay = np.zeros((rows, cols, 4))
     overlay[mask == 1] = [0.85, 0.05, 0.05, 0.85]
     overlay[mask == 2] = [0.0, 0.0, 0.0, 1.0]
@@ -93,7 +98,7 @@ def draw_map(request, trajectories, out):
                                   np.zeros(len(segments)))
         ax.add_collection(line_collection)
         # Labels spread along the routes so that overlapping routes keep readable labels.
-        at = int((0.3 + 0.17 * (t["group"] % 4)) * (len(d["x"]) - 1))
+        at = int((0.2 + 0.25 * (t["group"] % 3)) * (len(d["x"]) - 1))
         ax.annotate(t["label"], (d["x"][at], d["y"][at]), xytext=(6, 10 - 24 * (t["group"] % 2)),
                     textcoords="offset points", fontsize=8, color="white",
                     bbox=dict(boxstyle="round,pad=0.2", fc=colour, alpha=0.85, lw=0))

@@ -154,6 +154,11 @@ std::vector<Eigen::Vector2d> polyline(const models::Trajectory& t) {
   return points;
 }
 
+// Shortcutting: the candidate is resampled this often [m] and a straight segment may skip at
+// most this many samples.
+constexpr double kShortcutSpacing = 0.5;
+constexpr std::size_t kShortcutWindow = 200;
+
 // Speeds below this are rest [m/s]: their curvature omega / v is rounding noise.
 constexpr double kRestSpeed = 1e-9;
 
@@ -225,6 +230,14 @@ std::optional<std::string> validateRefinementOptions(const RefinementOptions& o)
   }
   if (!(o.guess_spacing_m > 0.0)) return "guess_spacing_m must be > 0";
   if (o.margin_retries < 0) return "margin_retries must be >= 0";
+  if (!(o.shortcut_clearance_m >= 0.0) || !std::isfinite(o.shortcut_clearance_m)) {
+    return "shortcut_clearance_m must be a finite number >= 0";
+  }
+  if (!(o.shortcut_gain > 0.0 && o.shortcut_gain <= 1.0)) return "shortcut_gain must be in (0, 1]";
+  if (!(o.corridor_radius_m >= 0.0) || !std::isfinite(o.corridor_radius_m)) {
+    return "corridor_radius_m must be a finite number >= 0 (got " +
+           formatNumber(o.corridor_radius_m) + ")";
+  }
   if (!(o.coarse_interval_length_m > 0.0) || !std::isfinite(o.coarse_interval_length_m)) {
     return "coarse_interval_length_m must be a finite number > 0 (got " +
            formatNumber(o.coarse_interval_length_m) + ")";
@@ -348,6 +361,26 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   out.candidate_figures = measure(out.candidate, CheckTolerances{});
   const TrajectoryFigures& before = *out.candidate_figures;
 
+  // A wiggly candidate (a PRM's first solution, with loops) starts the optimiser from its
+  // shortcut path instead, when that keeps the class: loops and detours cost iterations and
+  // can trap it.
+  const ocp::TranscriptionGuess candidate_guess = *guess;
+  if (options_.shortcut_clearance_m > 0.0) {
+    const std::vector<Eigen::Vector2d> shortcut =
+        shortcutPath(polyline(out.candidate), options_.shortcut_clearance_m);
+    double length = 0.0;
+    for (std::size_t i = 1; i < shortcut.size(); ++i)
+      length += (shortcut[i] - shortcut[i - 1]).norm();
+    if (length < options_.shortcut_gain * before.length_m &&
+        frames_->signatureOf(shortcut).toString() == before.homotopy) {
+      if (std::optional<ocp::TranscriptionGuess> shorter =
+              ocp::guessFromPath(shortcut, *bvp_, options_.guess_spacing_m, &why)) {
+        guess = std::move(shorter);
+        out.guess_shortcut_m = before.length_m - length;
+      }
+    }
+  }
+
   // 2. Choose the method.
   out.method = chooseRefineMethod(options_, before.length_m, before.min_clearance_m,
                                   curvatureSignChanges(out.candidate), out.method_rule);
@@ -397,27 +430,118 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
     out.parametric.reset();
   }
 
-  transcribe(*guess, before, out);
+  transcribe(*guess, before, clearance_, out);
   accept(out.status, out.reason);
+  // Interior-point iterates may pass through a small obstacle: once the class is lost, solve
+  // again from the candidate inside a corridor around it, which the clearance constraint keeps.
+  if (out.refined_figures && !out.homotopy_kept && options_.corridor_radius_m > 0.0) {
+    const terrain::ClearanceMap corridor(corridorMap(out.candidate));
+    out.corridor_radius_m = options_.corridor_radius_m;
+    out.iterations_before_corridor = out.iterations;
+    out.refined_figures.reset();
+    transcribe(candidate_guess, before, corridor, out);
+    accept(out.status, out.reason);
+  }
   return finish(out.status, out.reason);
 }
 
+terrain::ElevationMap CandidateRefiner::corridorMap(const models::Trajectory& candidate) const {
+  terrain::ElevationMap map = *problem_->map;
+  const terrain::GridGeometry& g = map.geometry();
+  terrain::GridLayer& lethal = map.addLayer(terrain::layer_names::kLethal, 0.0f);
+  std::vector<unsigned char> inside(g.cellCount(), 0);
+  const double radius = options_.corridor_radius_m;
+  const int reach = static_cast<int>(std::ceil(radius / g.cell));
+  const auto markDisc = [&](const Eigen::Vector2d& centre) {
+    const std::optional<terrain::CellIndex> c = g.cellAt(centre);
+    if (!c) return;
+    for (int r = std::max(0, c->row - reach); r <= std::min(g.rows - 1, c->row + reach); ++r) {
+      for (int k = std::max(0, c->col - reach); k <= std::min(g.cols - 1, c->col + reach); ++k) {
+        if ((g.cellCenter({r, k}) - centre).norm() <= radius) {
+          inside[g.linearIndex({r, k})] = 1;
+        }
+      }
+    }
+  };
+  // Discs every half cell along the candidate: their union is the corridor.
+  const std::vector<models::TrajectorySample>& s = candidate.samples;
+  for (std::size_t i = 0; i + 1 < s.size(); ++i) {
+    const Eigen::Vector2d a(s[i].x, s[i].y), b(s[i + 1].x, s[i + 1].y);
+    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / (0.5 * g.cell))));
+    for (int j = 0; j <= steps; ++j) markDisc(a + (b - a) * (static_cast<double>(j) / steps));
+  }
+  for (int r = 0; r < g.rows; ++r) {
+    for (int k = 0; k < g.cols; ++k) {
+      if (!inside[g.linearIndex({r, k})]) lethal(r, k) = 1.0f;
+    }
+  }
+  return map;
+}
+
+std::vector<Eigen::Vector2d> CandidateRefiner::shortcutPath(
+    const std::vector<Eigen::Vector2d>& path, double clearance) const {
+  // The path every half metre.
+  std::vector<Eigen::Vector2d> points{path.front()};
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    const Eigen::Vector2d a = path[i - 1], b = path[i];
+    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / kShortcutSpacing)));
+    for (int j = 1; j <= steps; ++j)
+      points.push_back(a + (b - a) * (static_cast<double>(j) / steps));
+  }
+  const double step = 0.25 * problem_->map->geometry().cell;
+  const auto clear = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+    for (int j = 0; j <= steps; ++j) {
+      const std::optional<terrain::Clearance> c =
+          clearance_.at(a + (b - a) * (static_cast<double>(j) / steps));
+      if (!c || c->distance < clearance) return false;
+    }
+    return true;
+  };
+  // Greedy: from each kept point, the farthest point within the window reachable straight.
+  std::vector<Eigen::Vector2d> out{points.front()};
+  std::size_t i = 0;
+  const std::size_t last = points.size() - 1;
+  while (i < last) {
+    std::size_t best = i + 1;
+    for (std::size_t j = std::min(last, i + kShortcutWindow); j > i + 1; --j) {
+      if (clear(points[i], points[j])) {
+        best = j;
+        break;
+      }
+    }
+    out.push_back(points[best]);
+    i = best;
+  }
+  return out;
+}
+
 void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
-                                  const TrajectoryFigures& before, RefinementResult& out) const {
+                                  const TrajectoryFigures& before,
+                                  const terrain::ClearanceMap& clearance,
+                                  RefinementResult& out) const {
   ocp::DirectTranscriptionOptions transcription = options_.transcription;
   if (out.method == RefineMethod::kShooting) {
     transcription.scheme = ocp::TranscriptionScheme::kMultipleShooting;
   } else if (transcription.scheme == ocp::TranscriptionScheme::kMultipleShooting) {
     transcription.scheme = ocp::TranscriptionScheme::kHermiteSimpson;
   }
+  // Intervals by the length of the path the optimiser starts from (the shortcut's, if used).
+  double length = 0.0;
+  for (std::size_t i = 1; i < guess.points.size(); ++i) {
+    length += (guess.points[i].head<2>() - guess.points[i - 1].head<2>()).norm();
+  }
   transcription.intervals =
-      std::clamp(static_cast<int>(std::ceil(before.length_m / options_.interval_length_m)),
+      std::clamp(static_cast<int>(std::ceil(length / options_.interval_length_m)),
                  options_.min_intervals, options_.max_intervals);
   const bool has_obstacles = before.min_clearance_m < 0.5 * 1e3;
   if (has_obstacles) {
+    // At least half a cell (capped by min_clearance_m): the bilinear distance transform rounds
+    // a lethal cell's corners, which a trajectory held only at 0 clips between its points.
+    const double floor = std::min(options_.min_clearance_m, 0.5 * problem_->map->geometry().cell);
     out.clearance_used_m =
-        std::max(0.0, std::min(options_.min_clearance_m, 0.5 * before.min_clearance_m));
-    transcription.model.clearance = {&clearance_, out.clearance_used_m};
+        std::max(floor, std::min(options_.min_clearance_m, 0.5 * before.min_clearance_m));
+    transcription.model.clearance = {&clearance, out.clearance_used_m};
   }
   // Verified against the true limits, and against lethal cells only (clearance >= 0) rather
   // than the clearance the solver kept.
@@ -452,7 +576,7 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
   // A coarse mesh first: a wiggly candidate (a PRM's first solution) is straightened there at a
   // fraction of the cost, and the fine mesh starts from a smooth guess.
   const int coarse_intervals = std::clamp(
-      static_cast<int>(std::ceil(before.length_m / options_.coarse_interval_length_m)),
+      static_cast<int>(std::ceil(length / options_.coarse_interval_length_m)),
       std::min(options_.min_intervals, transcription.intervals), transcription.intervals);
   if (coarse_intervals < transcription.intervals / 2) {
     ocp::DirectTranscriptionOptions coarse = transcription;

@@ -131,6 +131,31 @@ TEST(CandidateRefiner, KeepsEachSideOfABlock) {
   EXPECT_NE(classes[0], classes[1]);
 }
 
+// A small obstacle just north of the straight line, the candidate well north of it: the
+// cheaper class is one small step south, which interior-point iterates may take straight
+// through the obstacle. The result keeps the candidate's class (first time, or by the corridor
+// retry), and the report says whether the corridor was needed.
+TEST(CandidateRefiner, KeepsTheClassPastASmallObstacle) {
+  terrain::ElevationMap map = testing::flatMap(64, 96);  // 24 m x 16 m
+  testing::block(map, 11.5, 8.25, 12.0, 8.75);           // 0.5 m, centred 0.5 m north of y = 8
+  auto world = testing::worldOn(std::move(map), {3.0, 8.0}, {21.0, 8.0});
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  ReferenceFrameOptions options;
+  options.anchor = {12.0, 4.0};  // south of the obstacle: its frame points north
+  const ReferenceFrames frames =
+      ReferenceFrames::build(world->map, terrain::findObstacleClusters(world->map), options);
+  ASSERT_EQ(frames.size(), 1u);
+  const CandidateRefiner refiner(world->problem, bvp, frames);
+  const RefinementResult r =
+      refiner.refine(xyPath({{3.0, 8.0}, {8.0, 9.6}, {16.0, 9.6}, {21.0, 8.0}}));
+  expectSound(r, world->problem, frames);
+  EXPECT_NE(r.refined_figures->homotopy, "");  // it passes south of the frame's start: crosses
+  for (const models::TrajectorySample& s : r.verified.trajectory.samples) {
+    if (s.x > 11.5 && s.x < 12.0) EXPECT_GT(s.y, 8.75) << s.x;
+  }
+  RecordProperty("corridor_radius_m", std::to_string(r.corridor_radius_m));
+}
+
 TEST(CandidateRefiner, AutoPicksNewtonForShortClearPathsAndCollocationOtherwise) {
   const RefinementOptions options;
   std::string rule;

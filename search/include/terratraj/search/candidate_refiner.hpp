@@ -67,7 +67,8 @@ struct RefinementOptions {
   /// intervals.
   double coarse_interval_length_m = 1.0;
   /// Clearance kept from lethal and no-data cells [m], >= 0; lowered to half the candidate's
-  /// own smallest clearance when that is less (a candidate through a narrow gap stays feasible).
+  /// own smallest clearance when that is less (a candidate through a narrow gap stays
+  /// feasible), but not below half a cell.
   double min_clearance_m = 0.25;
   /// kAuto picks ipopt (polynomial controls) only for candidates at most this long [m] ...
   double parametric_max_length_m = 10.0;
@@ -100,6 +101,17 @@ struct RefinementOptions {
   ocp::BoundaryValueOptions parametric;
   /// Sampling of the candidate's derived speed profile for an x,y path [m].
   double guess_spacing_m = 0.25;
+  /// A converged refinement that left the candidate's class is solved again from the candidate
+  /// inside a corridor: the cells within this distance of it [m], > 0 (0: no retry), the rest
+  /// made impassable for the clearance constraint. A path in the corridor can only leave the
+  /// class through an obstacle inside it.
+  double corridor_radius_m = 1.0;
+  /// The optimiser starts from the candidate's shortcut path (greedy straight segments that
+  /// keep this clearance from impassable cells [m], > 0; 0: never) when that is shorter than
+  /// shortcut_gain x the candidate's length and in the same class: loops and detours of a
+  /// wiggly candidate cost iterations and can trap the optimiser.
+  double shortcut_clearance_m = 0.35;
+  double shortcut_gain = 0.95;  ///< in (0, 1]
   /// Tolerances of the independent re-check of the refined trajectory.
   CheckTolerances check = [] {
     CheckTolerances tolerances;
@@ -136,9 +148,12 @@ struct RefinementResult {
   std::optional<TrajectoryFigures> refined_figures;    ///< absent when nothing re-simulated
   bool homotopy_kept = false;
   int intervals = 0;               ///< direct transcription's final interval count
-  int coarse_intervals = 0;  ///< the coarse solve's intervals (0: none)
+  int coarse_intervals = 0;        ///< the coarse solve's intervals (0: none)
+  double corridor_radius_m = 0.0;  ///< the corridor of the class retry (0: none needed)
+  double guess_shortcut_m = 0.0;   ///< how much shorter the shortcut guess was [m] (0: not used)
+  int iterations_before_corridor = 0;  ///< iterations spent before that retry
   ocp::SolveStatus coarse_status = ocp::SolveStatus::kError;  ///< the coarse solve's outcome
-  int margin_rounds = 0;  ///< fine direct transcription solves (1 + margin retries used)
+  int margin_rounds = 0;           ///< fine direct transcription solves (1 + margin retries used)
   double speed_margin_used = 0.0;  ///< the margins of the last solve (fractions)
   double limit_margin_used = 0.0;
   double clearance_used_m = 0.0;              ///< the clearance constraint (transcription)
@@ -175,10 +190,15 @@ class CandidateRefiner {
   const ReferenceFrames& frames() const { return *frames_; }
 
  private:
-  // Direct transcription from `guess` with the margin retries; fills `out` (status, reason,
-  // verified, history, intervals, clearance).
+  // Direct transcription from `guess` with the margin retries, keeping clear of the impassable
+  // cells of `clearance`; fills `out` (status, reason, verified, history, intervals, clearance).
   void transcribe(const ocp::TranscriptionGuess& guess, const TrajectoryFigures& before,
-                  RefinementResult& out) const;
+                  const terrain::ClearanceMap& clearance, RefinementResult& out) const;
+  // The candidate's path with greedy straight shortcuts keeping `clearance` [m].
+  std::vector<Eigen::Vector2d> shortcutPath(const std::vector<Eigen::Vector2d>& path,
+                                            double clearance) const;
+  // The map with every cell farther than corridor_radius_m from the candidate made lethal.
+  terrain::ElevationMap corridorMap(const models::Trajectory& candidate) const;
 
   const PlanningProblem* problem_;
   const ocp::BoundaryValueProblem* bvp_;
