@@ -3,6 +3,8 @@
 // limits, a vehicle on a map with start and goal placed on moderate ground, and a tally of the
 // independent re-checks (failures named, so that none goes unseen).
 
+#include <benchmark/benchmark.h>
+
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
@@ -143,5 +145,16 @@ class CheckTally {
   int ok_ = 0;
   std::map<std::string, Failure> failures_;
 };
+
+/// The main() of a benchmark binary whose benchmarks `registerBenchmarks` registers.
+template <typename Register>
+int runBenchmarks(int argc, char** argv, Register&& registerBenchmarks) {
+  registerBenchmarks();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
 
 }  // namespace terratraj::bench

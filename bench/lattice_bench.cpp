@@ -318,10 +318,5 @@ void registerBenchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  registerBenchmarks();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return terratraj::bench::runBenchmarks(argc, argv, registerBenchmarks);
 }

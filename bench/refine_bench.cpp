@@ -217,10 +217,5 @@ void registerBenchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  registerBenchmarks();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return terratraj::bench::runBenchmarks(argc, argv, registerBenchmarks);
 }

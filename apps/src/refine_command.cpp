@@ -139,14 +139,7 @@ nlohmann::json refineReportJson(const search::RefinementResult& r,
                                 const search::RefinementOptions& options,
                                 const std::filesystem::path& candidate_file,
                                 const std::optional<std::filesystem::path>& out) {
-  nlohmann::json history = nlohmann::json::array();
-  for (const ocp::IterationRecord& h : r.history) {
-    history.push_back({{"iteration", h.iteration},
-                       {"terminal_error", number(h.terminal_error)},
-                       {"cost", number(h.cost)},
-                       {"lagrangian_gradient", number(h.lagrangian_gradient)},
-                       {"step", number(h.step)}});
-  }
+  const nlohmann::json history = iterationHistoryJson(r.history, false);
   nlohmann::json derived = nlohmann::json::array();
   for (const std::string& c : r.derived_columns) derived.push_back(c);
   nlohmann::json candidate{{"file", candidate_file.string()},

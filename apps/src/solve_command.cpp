@@ -44,6 +44,21 @@ nlohmann::json number(double value) {
 
 }  // namespace
 
+nlohmann::json iterationHistoryJson(const std::vector<ocp::IterationRecord>& history,
+                                    bool heading_error) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const ocp::IterationRecord& r : history) {
+    nlohmann::json row{{"iteration", r.iteration},
+                       {"terminal_error", number(r.terminal_error)},
+                       {"cost", number(r.cost)},
+                       {"lagrangian_gradient", number(r.lagrangian_gradient)},
+                       {"step", number(r.step)}};
+    if (heading_error) row["heading_error"] = number(r.heading_error);
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
 nlohmann::json verifiedTrajectoryJson(const ocp::VerifiedTrajectory& v) {
   return {
       {"final_time_s", v.ok ? number(v.final_time) : nullptr},
@@ -142,14 +157,7 @@ nlohmann::json transcriptionReportJson(const ocp::TranscriptionSolution& solutio
                                        const ocp::DirectTranscriptionOptions& options,
                                        const std::string& guess_source) {
   const ocp::SolveResult& s = solution.result;
-  nlohmann::json history = nlohmann::json::array();
-  for (const ocp::IterationRecord& r : s.history) {
-    history.push_back({{"iteration", r.iteration},
-                       {"terminal_error", number(r.terminal_error)},
-                       {"cost", number(r.cost)},
-                       {"lagrangian_gradient", number(r.lagrangian_gradient)},
-                       {"step", number(r.step)}});
-  }
+  const nlohmann::json history = iterationHistoryJson(s.history, false);
   nlohmann::json active = nlohmann::json::array();
   for (const ocp::ActiveConstraint& a : solution.active) {
     active.push_back({{"limit", a.name},
@@ -195,15 +203,7 @@ nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,
                                const ocp::BoundaryValueOptions& options) {
   const ocp::VerifiedTrajectory& v = solution.verified;
   const ocp::SolveResult& s = solution.solver;
-  nlohmann::json history = nlohmann::json::array();
-  for (const ocp::IterationRecord& r : s.history) {
-    history.push_back({{"iteration", r.iteration},
-                       {"terminal_error", number(r.terminal_error)},
-                       {"heading_error", number(r.heading_error)},
-                       {"cost", number(r.cost)},
-                       {"lagrangian_gradient", number(r.lagrangian_gradient)},
-                       {"step", number(r.step)}});
-  }
+  const nlohmann::json history = iterationHistoryJson(s.history, true);
   nlohmann::json json{
       {"status", ocp::solveStatusName(solution.status)},
       {"reason", solution.reason},

@@ -1,4 +1,5 @@
 #include "terratraj/apps/cli.hpp"
+#include "cli_run.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -20,20 +21,8 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-struct CliResult {
-  int status;
-  std::string out;
-  std::string err;
-};
-
-CliResult run(std::vector<std::string> args) {
-  args.insert(args.begin(), "terratraj");
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  const int status = runCli(static_cast<int>(argv.size()), argv.data(), out, err);
-  return {status, out.str(), err.str()};
-}
+using testing::run;
+using CliResult = testing::CliRun;
 
 std::string sharedData(const std::string& name) {
   return std::string(TERRATRAJ_SHARED_DATA_DIR) + "/" + name;

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_run.hpp"
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
@@ -26,20 +27,8 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int status;
-  std::string out;
-  std::string err;
-};
-
-CliRun run(std::vector<std::string> args) {
-  args.insert(args.begin(), "terratraj");
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  const int status = runCli(static_cast<int>(argv.size()), argv.data(), out, err);
-  return {status, out.str(), err.str()};
-}
+using testing::CliRun;
+using testing::run;
 
 // A 96 x 96 hills map (24 m) and a problem from (2.4, 12) to (21.6, 12).
 std::string problemYaml(const std::string& terrain, const std::string& start,

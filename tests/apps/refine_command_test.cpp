@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_run.hpp"
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/terrain/raster_io.hpp"
@@ -23,20 +24,8 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int status;
-  std::string out;
-  std::string err;
-};
-
-CliRun run(std::vector<std::string> args) {
-  args.insert(args.begin(), "terratraj");
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  const int status = runCli(static_cast<int>(argv.size()), argv.data(), out, err);
-  return {status, out.str(), err.str()};
-}
+using testing::CliRun;
+using testing::run;
 
 // A problem on a generated map of 24 m x 24 m from (2.4, 12) to (21.6, 12), at rest, heading
 // east; `extra` is appended as more YAML.
