@@ -157,7 +157,7 @@ void refineBenchmark(benchmark::State& state, const std::string& name, Planner p
                 .count());
         if (r.status != ocp::SolveStatus::kConverged) {
           notes += " seed " + std::to_string(seed) + " #" + std::to_string(k) + ": " +
-                   ocp::solveStatusName(r.status) + ";";
+                   ocp::solveStatusName(r.status) + " (" + r.reason.substr(0, 160) + ");";
           dumpFailure(found[k], name, seed, k);
           continue;
         }

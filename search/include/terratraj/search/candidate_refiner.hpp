@@ -62,13 +62,13 @@ struct RefinementOptions {
   double interval_length_m = 0.25;
   int min_intervals = 20;   ///< ... but at least this many, >= 1
   int max_intervals = 800;  ///< ... and at most this many, >= min_intervals
-  /// A first solve on a coarse mesh (one interval per this much length [m], > 0), whose
-  /// solution (when it converges) starts the fine one; skipped when it would not halve the
-  /// intervals.
+  /// For a candidate whose shortcut guess is used (a wiggly one), a first solve on a coarse mesh
+  /// (one interval per this much length [m], > 0), whose solution (when it converges) starts
+  /// the fine one; skipped when it would not halve the intervals.
   double coarse_interval_length_m = 1.0;
   /// Clearance kept from lethal and no-data cells [m], >= 0; lowered to half the candidate's
   /// own smallest clearance when that is less (a candidate through a narrow gap stays
-  /// feasible), but not below half a cell.
+  /// feasible); raised to half a cell (at most this) when the re-simulation clips a lethal cell.
   double min_clearance_m = 0.25;
   /// kAuto picks ipopt (polynomial controls) only for candidates at most this long [m] ...
   double parametric_max_length_m = 10.0;
@@ -92,10 +92,10 @@ struct RefinementOptions {
   /// quadratic between points; the overshoot measured at 0.25 m intervals is about 0.1 %).
   double speed_margin = 0.0005;
   /// A re-simulation that still breaks a limit by more than parametric.limit_tolerance is
-  /// solved again from its own solution, up to this many times, >= 0: first with twice the
-  /// intervals (within max_intervals), then with the speed margin x 4 and the others x 2 (at
-  /// most 0.25).
-  int margin_retries = 2;
+  /// solved again from its own solution, up to this many times, >= 0: with the clearance
+  /// raised to half a cell if it clipped a lethal cell; else first with twice the intervals
+  /// (within max_intervals), then with the speed margin x 4 and the others x 2 (at most 0.25).
+  int margin_retries = 3;
   /// The parametric solvers' settings (newton, ipopt; the method is set per refinement), and
   /// the terminal tolerances and limit tolerance of every method.
   ocp::BoundaryValueOptions parametric;
