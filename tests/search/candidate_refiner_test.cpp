@@ -151,7 +151,9 @@ TEST(CandidateRefiner, KeepsTheClassPastASmallObstacle) {
   expectSound(r, world->problem, frames);
   EXPECT_NE(r.refined_figures->homotopy, "");  // it passes south of the frame's start: crosses
   for (const models::TrajectorySample& s : r.verified.trajectory.samples) {
-    if (s.x > 11.5 && s.x < 12.0) EXPECT_GT(s.y, 8.75) << s.x;
+    if (s.x > 11.5 && s.x < 12.0) {
+      EXPECT_GT(s.y, 8.75) << s.x;
+    }
   }
   RecordProperty("corridor_radius_m", std::to_string(r.corridor_radius_m));
 }
