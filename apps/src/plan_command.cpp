@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "terratraj/apps/cli.hpp"
+#include "terratraj/apps/json_number.hpp"
 #include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
@@ -27,11 +28,6 @@
 
 namespace terratraj::apps {
 namespace {
-
-// JSON has no NaN or infinity: such values are null.
-nlohmann::json number(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
 
 std::string formatNumber(double value) {
   std::ostringstream text;
@@ -77,6 +73,14 @@ search::GoalRegion goalRegion(const ProblemSpec& problem) {
 
 }  // namespace
 
+nlohmann::json checkReportJson(const search::CheckReport& check) {
+  nlohmann::json violated = nlohmann::json::array();
+  for (const search::CheckViolation& v : check.violations) violated.push_back(v.limit);
+  return {{"ok", check.ok()},
+          {"constraint_violation", check.max_violation},
+          {"violated_limits", violated}};
+}
+
 nlohmann::json planReportJson(const search::PlanResult& result, const PlanReportInfo& info) {
   nlohmann::json history = nlohmann::json::array();
   for (const search::CostSample& sample : result.cost_history) {
@@ -86,28 +90,23 @@ nlohmann::json planReportJson(const search::PlanResult& result, const PlanReport
     return k < info.files.size() ? nlohmann::json(info.files[k].string()) : nlohmann::json(nullptr);
   };
   const auto checkJson = [&info](std::size_t k) {
-    if (k >= info.checks.size()) return nlohmann::json(nullptr);
-    nlohmann::json violated = nlohmann::json::array();
-    for (const search::CheckViolation& v : info.checks[k].violations) violated.push_back(v.limit);
-    return nlohmann::json{{"ok", info.checks[k].ok()},
-                          {"constraint_violation", info.checks[k].max_violation},
-                          {"violated_limits", violated}};
+    return k < info.checks.size() ? checkReportJson(info.checks[k]) : nlohmann::json(nullptr);
   };
   nlohmann::json solutions = nlohmann::json::array();
   if (result.status == search::PlanStatus::kSolved && result.solutions.empty()) {
-    solutions.push_back({{"cost_s", number(result.best_cost_s)},
-                         {"length_m", number(result.length_m)},
+    solutions.push_back({{"cost_s", jsonNumber(result.best_cost_s)},
+                         {"length_m", jsonNumber(result.length_m)},
                          {"homotopy", ""},
                          {"file", fileAt(0)},
                          {"check", checkJson(0)}});
   }
   for (std::size_t k = 0; k < result.solutions.size(); ++k) {
     const search::PlanSolution& s = result.solutions[k];
-    solutions.push_back({{"cost_s", number(s.cost_s)},
-                         {"length_m", number(s.length_m)},
+    solutions.push_back({{"cost_s", jsonNumber(s.cost_s)},
+                         {"length_m", jsonNumber(s.length_m)},
                          {"homotopy", s.homotopy},
                          {"file", fileAt(k)},
-                         {"search_cost_s", number(s.search_cost_s)},
+                         {"search_cost_s", jsonNumber(s.search_cost_s)},
                          {"proven_optimal", s.proven_optimal},
                          {"found_ms", s.found_ms},
                          {"check", checkJson(k)}});
@@ -146,8 +145,8 @@ nlohmann::json planReportJson(const search::PlanResult& result, const PlanReport
       {"solutions", solutions},
       {"seed", info.seed},
       {"reason", result.reason},
-      {"best_cost_s", number(result.best_cost_s)},
-      {"first_solution_cost_s", number(result.first_solution_cost_s)},
+      {"best_cost_s", jsonNumber(result.best_cost_s)},
+      {"first_solution_cost_s", jsonNumber(result.first_solution_cost_s)},
       {"statistics", statistics},
       {"cost_history", history},
   };
@@ -351,20 +350,19 @@ std::vector<const models::Trajectory*> candidatesOf(const search::PlanResult& re
 struct RefinedCandidates {
   std::vector<search::RefinementResult> results;
   std::vector<std::optional<std::filesystem::path>> files;
-  search::ReferenceFrames frames;
   int converged = 0;
 };
 
 RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScene& scene,
                                    const search::PlanningProblem& query,
+                                   const search::ReferenceFrames& frames,
+                                   const search::RefinementOptions& settings,
                                    const search::PlanResult& result, const PlanOptions& options,
                                    nlohmann::json& report, CommandContext& context) {
   RefinedCandidates refined;
-  const search::RefinementOptions settings = refinementOptions(problem, options.method);
   ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem);
   bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable()};
-  refined.frames = problemReferenceFrames(problem, query);
-  const search::CandidateRefiner refiner(query, bvp, refined.frames, settings);
+  const search::CandidateRefiner refiner(query, bvp, frames, settings);
   const std::vector<const models::Trajectory*> candidates = candidatesOf(result);
   double ratio_sum = 0.0;
   int ratios = 0, kept = 0;
@@ -384,7 +382,7 @@ RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScen
       solution["cost"] = r.candidate_figures->cost;
       solution["max_abs_pitch_rad"] = r.candidate_figures->max_abs_pitch;
       solution["max_abs_roll_rad"] = r.candidate_figures->max_abs_roll;
-      solution["min_clearance_m"] = r.candidate_figures->min_clearance_m;
+      solution["min_clearance_m"] = jsonNumber(r.candidate_figures->min_clearance_m);
       solution["homotopy_frames"] = r.candidate_figures->homotopy;
     }
     solution["refined"] = refinedSolutionJson(r, file);
@@ -418,9 +416,9 @@ RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScen
 
 // The figures of a plan (and its refinements).
 PlotOutcome plotPlan(const ProblemSpec& problem, const ProblemScene& scene,
-                     const search::PlanResult& result, const PlanReportInfo& info,
-                     const RefinedCandidates* refined, const std::filesystem::path& png,
-                     CommandContext& context) {
+                     const search::ReferenceFrames& frames, const search::PlanResult& result,
+                     const PlanReportInfo& info, const RefinedCandidates* refined,
+                     const std::filesystem::path& png, CommandContext& context) {
   PlotRequest plot;
   plot.title = std::string("plan (") + info.planner + ")" + (refined ? " and refine" : "");
   plot.limits = problem.vehicle.limits;
@@ -446,17 +444,8 @@ PlotOutcome plotPlan(const ProblemSpec& problem, const ProblemScene& scene,
           {"refine " + std::to_string(k) + " (" + search::refineMethodName(r.method) + ")",
            r.history, static_cast<int>(k)});
     }
-    for (std::size_t k = 0; k < refined->frames.size(); ++k) {
-      plot.frames.push_back({search::HomotopySignature::frameName(static_cast<int>(k)),
-                             refined->frames.frames()[k].start, refined->frames.frames()[k].end});
-    }
-  } else if (const auto it = info.extra.find("taeasl"); it != info.extra.end()) {
-    for (const nlohmann::json& f : (*it)["frames"]) {
-      plot.frames.push_back({f["name"].get<std::string>(),
-                             {f["start"][0].get<double>(), f["start"][1].get<double>()},
-                             {f["end"][0].get<double>(), f["end"][1].get<double>()}});
-    }
   }
+  plot.frames = plotFrames(frames);
   return writePlots(plot, scene.map(), png, context);
 }
 
@@ -504,7 +493,8 @@ PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandCon
   const models::TerrainFollowingModel& vehicle = scene.vehicle();
   const search::PlanningProblem query = planningProblem(problem, scene);
   // Bad refine settings fail before planning.
-  if (options.refine) (void)refinementOptions(problem, options.method);
+  std::optional<search::RefinementOptions> settings;
+  if (options.refine) settings = refinementOptions(problem, options.method);
 
   PlanReportInfo info;
   info.planner = plannerKindName(problem.planner.kind);
@@ -525,15 +515,19 @@ PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandCon
 
   PlanRun run;
   run.report = planReportJson(result, info);
+  // The classes of the refinements and of the plot: TAEASL's frames, for every planner.
+  const search::ReferenceFrames frames =
+      settings || options.plot ? problemReferenceFrames(problem, query) : search::ReferenceFrames();
   std::optional<RefinedCandidates> refined;
-  if (options.refine && result.status == search::PlanStatus::kSolved) {
-    refined = refineCandidates(problem, scene, query, result, options, run.report, context);
+  if (settings && result.status == search::PlanStatus::kSolved) {
+    refined = refineCandidates(problem, scene, query, frames, *settings, result, options,
+                               run.report, context);
   }
   if (options.plot) {
     createDirectories(options.plot->has_parent_path() ? options.plot->parent_path()
                                                       : std::filesystem::path("."));
-    run.report["plots"] = plotPlan(problem, scene, result, info, refined ? &*refined : nullptr,
-                                   *options.plot, context)
+    run.report["plots"] = plotPlan(problem, scene, frames, result, info,
+                                   refined ? &*refined : nullptr, *options.plot, context)
                               .toJson();
   }
   run.summary = planSummary(result, info, refined ? &*refined : nullptr);

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "terratraj/apps/json_number.hpp"
 #include "terratraj/apps/plot_script.hpp"
 #include "terratraj/terrain/input_error.hpp"
 
@@ -18,10 +19,6 @@ namespace terratraj::apps {
 namespace {
 
 namespace fs = std::filesystem;
-
-nlohmann::json number(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
 
 void writeBytes(const fs::path& file, const char* data, std::size_t size) {
   std::ofstream out(file, std::ios::binary);
@@ -72,8 +69,8 @@ nlohmann::json requestJson(const PlotRequest& request, const terrain::GridGeomet
     nlohmann::json rows = nlohmann::json::array();
     for (const ocp::IterationRecord& r : h.iterations) {
       rows.push_back({{"iteration", r.iteration},
-                      {"terminal_error", number(r.terminal_error)},
-                      {"cost", number(r.cost)}});
+                      {"terminal_error", jsonNumber(r.terminal_error)},
+                      {"cost", jsonNumber(r.cost)}});
     }
     histories.push_back({{"label", h.label}, {"iterations", rows}, {"group", h.group}});
   }
@@ -150,6 +147,15 @@ std::string readLog(const fs::path& log) {
 }
 
 }  // namespace
+
+std::vector<PlotFrame> plotFrames(const search::ReferenceFrames& frames) {
+  std::vector<PlotFrame> out;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    out.push_back({search::HomotopySignature::frameName(static_cast<int>(k)),
+                   frames.frames()[k].start, frames.frames()[k].end});
+  }
+  return out;
+}
 
 PlotFiles plotFiles(const fs::path& png) {
   const fs::path dir = png.parent_path();

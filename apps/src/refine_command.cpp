@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "terratraj/apps/cli.hpp"
+#include "terratraj/apps/json_number.hpp"
 #include "terratraj/apps/plan_command.hpp"
 #include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/apps/problem_loader.hpp"
@@ -17,16 +18,11 @@
 namespace terratraj::apps {
 namespace {
 
-nlohmann::json number(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
-nlohmann::json checkJson(const search::CheckReport& check) {
-  nlohmann::json violated = nlohmann::json::array();
-  for (const search::CheckViolation& v : check.violations) violated.push_back(v.limit);
-  return {{"ok", check.ok()},
-          {"constraint_violation", check.max_violation},
-          {"violated_limits", violated}};
+// The largest violation of a refined trajectory: the independent check's or the
+// re-simulation's (null before a re-simulation).
+nlohmann::json refinedViolation(const search::RefinementResult& r) {
+  if (!r.refined_figures) return nullptr;
+  return std::max(r.refined_figures->check.max_violation, r.verified.violation.amount);
 }
 
 // Creates the folder of an output file; InputError naming it when that fails.
@@ -70,8 +66,7 @@ search::RefinementOptions refinementOptions(const ProblemSpec& problem,
   options.speed_margin = spec.speed_margin;
   options.transcription.model.control_effort_weight = spec.control_effort;
   options.transcription.time_limit_s = spec.time_limit_s;
-  options.parametric = boundaryValueOptions(problem);
-  options.parametric.method = ocp::BoundaryValueMethod::kNewton;
+  options.parametric = boundaryValueOptions(problem);  // its method is set per refinement
   options.parametric.time_limit_s = spec.time_limit_s;
   if (std::optional<std::string> why = search::validateRefinementOptions(options)) {
     throw InputError(problem.source_file.string() + ": refine: " + *why);
@@ -96,15 +91,15 @@ search::ReferenceFrames problemReferenceFrames(const ProblemSpec& problem,
 }
 
 nlohmann::json trajectoryFiguresJson(const search::TrajectoryFigures& f) {
-  return {{"cost", number(f.cost)},
-          {"duration_s", number(f.duration_s)},
-          {"length_m", number(f.length_m)},
-          {"max_abs_pitch_rad", number(f.max_abs_pitch)},
-          {"max_abs_roll_rad", number(f.max_abs_roll)},
-          {"max_speed", number(f.max_speed)},
-          {"min_clearance_m", number(f.min_clearance_m)},
+  return {{"cost", jsonNumber(f.cost)},
+          {"duration_s", jsonNumber(f.duration_s)},
+          {"length_m", jsonNumber(f.length_m)},
+          {"max_abs_pitch_rad", jsonNumber(f.max_abs_pitch)},
+          {"max_abs_roll_rad", jsonNumber(f.max_abs_roll)},
+          {"max_speed", jsonNumber(f.max_speed)},
+          {"min_clearance_m", jsonNumber(f.min_clearance_m)},
           {"constraint_violation", f.check.max_violation},
-          {"check", checkJson(f.check)},
+          {"check", checkReportJson(f.check)},
           {"homotopy", f.homotopy}};
 }
 
@@ -120,17 +115,18 @@ nlohmann::json refinedSolutionJson(const search::RefinementResult& r,
                       {"iterations", r.iterations},
                       {"solve_time_ms", r.solve_time_ms},
                       {"intervals", r.intervals},
-                      {"min_clearance_m", r.clearance_used_m},
+                      {"clearance_constraint_m", r.clearance_used_m},
                       {"margin_rounds", r.margin_rounds},
+                      {"guess_shortcut_m", r.guess_shortcut_m},
+                      {"coarse_intervals", r.coarse_intervals},
                       {"corridor_radius_m", r.corridor_radius_m},
                       {"homotopy", nullptr},
                       {"homotopy_kept", r.homotopy_kept},
-                      {"cost_ratio", number(r.costRatio())}};
+                      {"cost_ratio", jsonNumber(r.costRatio())}};
   if (r.refined_figures) {
     json.update(trajectoryFiguresJson(*r.refined_figures));
-    json["cost_s"] = number(r.refined_figures->duration_s);
-    json["constraint_violation"] =
-        std::max(r.refined_figures->check.max_violation, r.verified.violation.amount);
+    json["cost_s"] = jsonNumber(r.refined_figures->duration_s);
+    json["constraint_violation"] = refinedViolation(r);
   }
   return json;
 }
@@ -161,8 +157,13 @@ nlohmann::json refineReportJson(const search::RefinementResult& r,
                            : nlohmann::json(nullptr)},
       {"solve_time_ms", r.solve_time_ms},
       {"intervals", r.intervals},
-      {"min_clearance_m", r.clearance_used_m},
+      {"clearance_constraint_m", r.clearance_used_m},
       {"corridor_radius_m", r.corridor_radius_m},
+      {"guess_shortcut_m", r.guess_shortcut_m},
+      {"coarse",
+       {{"intervals", r.coarse_intervals},
+        {"status", r.coarse_intervals > 0 ? nlohmann::json(ocp::solveStatusName(r.coarse_status))
+                                          : nlohmann::json(nullptr)}}},
       {"margins",
        {{"rounds", r.margin_rounds},
         {"speed", r.speed_margin_used},
@@ -177,14 +178,11 @@ nlohmann::json refineReportJson(const search::RefinementResult& r,
         {"after",
          r.refined_figures ? nlohmann::json(r.refined_figures->homotopy) : nlohmann::json(nullptr)},
         {"kept", r.homotopy_kept}}},
-      {"cost_ratio", number(r.costRatio())},
+      {"cost_ratio", jsonNumber(r.costRatio())},
       {"file", out && r.verified.ok ? nlohmann::json(out->string()) : nlohmann::json(nullptr)},
   };
   json.update(verifiedTrajectoryJson(r.verified));
-  if (r.refined_figures) {
-    json["constraint_violation"] =
-        std::max(r.refined_figures->check.max_violation, r.verified.violation.amount);
-  }
+  if (r.refined_figures) json["constraint_violation"] = refinedViolation(r);
   return json;
 }
 
@@ -235,10 +233,7 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
       plot.trajectories.push_back({"refined", refined, false, 0});
     }
     plot.histories.push_back({search::refineMethodName(result.method), result.history, 0});
-    for (std::size_t k = 0; k < frames.size(); ++k) {
-      plot.frames.push_back({search::HomotopySignature::frameName(static_cast<int>(k)),
-                             frames.frames()[k].start, frames.frames()[k].end});
-    }
+    plot.frames = plotFrames(frames);
     report["plots"] = writePlots(plot, scene.map(), *options.plot, context).toJson();
   }
   if (context.json) {

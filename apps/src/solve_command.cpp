@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "terratraj/apps/cli.hpp"
+#include "terratraj/apps/json_number.hpp"
 #include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
@@ -37,11 +38,6 @@ std::optional<ocp::BoundaryValueMethod> parametricMethod(SolverMethod method) {
   return std::nullopt;
 }
 
-// JSON has no NaN: unknown values are null.
-nlohmann::json number(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
 }  // namespace
 
 nlohmann::json iterationHistoryJson(const std::vector<ocp::IterationRecord>& history,
@@ -49,11 +45,11 @@ nlohmann::json iterationHistoryJson(const std::vector<ocp::IterationRecord>& his
   nlohmann::json rows = nlohmann::json::array();
   for (const ocp::IterationRecord& r : history) {
     nlohmann::json row{{"iteration", r.iteration},
-                       {"terminal_error", number(r.terminal_error)},
-                       {"cost", number(r.cost)},
-                       {"lagrangian_gradient", number(r.lagrangian_gradient)},
-                       {"step", number(r.step)}};
-    if (heading_error) row["heading_error"] = number(r.heading_error);
+                       {"terminal_error", jsonNumber(r.terminal_error)},
+                       {"cost", jsonNumber(r.cost)},
+                       {"lagrangian_gradient", jsonNumber(r.lagrangian_gradient)},
+                       {"step", jsonNumber(r.step)}};
+    if (heading_error) row["heading_error"] = jsonNumber(r.heading_error);
     rows.push_back(std::move(row));
   }
   return rows;
@@ -61,19 +57,19 @@ nlohmann::json iterationHistoryJson(const std::vector<ocp::IterationRecord>& his
 
 nlohmann::json verifiedTrajectoryJson(const ocp::VerifiedTrajectory& v) {
   return {
-      {"final_time_s", v.ok ? number(v.final_time) : nullptr},
-      {"cost", v.ok ? number(v.cost) : nullptr},
-      {"length_m", v.ok ? number(v.length) : nullptr},
+      {"final_time_s", v.ok ? jsonNumber(v.final_time) : nullptr},
+      {"cost", v.ok ? jsonNumber(v.cost) : nullptr},
+      {"length_m", v.ok ? jsonNumber(v.length) : nullptr},
       {"terminal_error",
-       {{"position_m", v.ok ? number(v.terminal_error.head<2>().norm()) : nullptr},
-        {"heading_rad", v.ok ? number(std::abs(v.terminal_error.z())) : nullptr}}},
-      {"max_abs_pitch_rad", number(v.max_abs_pitch)},
-      {"max_abs_roll_rad", number(v.max_abs_roll)},
-      {"max_speed", number(v.max_speed)},
-      {"constraint_violation", number(v.violation.amount)},
+       {{"position_m", v.ok ? jsonNumber(v.terminal_error.head<2>().norm()) : nullptr},
+        {"heading_rad", v.ok ? jsonNumber(std::abs(v.terminal_error.z())) : nullptr}}},
+      {"max_abs_pitch_rad", jsonNumber(v.max_abs_pitch)},
+      {"max_abs_roll_rad", jsonNumber(v.max_abs_roll)},
+      {"max_speed", jsonNumber(v.max_speed)},
+      {"constraint_violation", jsonNumber(v.violation.amount)},
       {"violated_limit",
        v.violation.limit.empty() ? nlohmann::json(nullptr) : nlohmann::json(v.violation.limit)},
-      {"slope_dwell_rad2_s", number(v.slope_dwell)},
+      {"slope_dwell_rad2_s", jsonNumber(v.slope_dwell)},
       {"verified", v.ok},
   };
 }
@@ -189,8 +185,8 @@ nlohmann::json transcriptionReportJson(const ocp::TranscriptionSolution& solutio
       {"time_limit_s",
        options.time_limit_s ? nlohmann::json(*options.time_limit_s) : nlohmann::json(nullptr)},
       {"solve_time_ms", s.solve_time_ms},
-      {"solver_cost", number(s.cost)},
-      {"max_defect", number(solution.max_defect)},
+      {"solver_cost", jsonNumber(s.cost)},
+      {"max_defect", jsonNumber(solution.max_defect)},
       {"active_constraints", active},
       {"mesh_refinement", refinement},
       {"history", history},

@@ -147,6 +147,12 @@ int curvatureSignChanges(const models::Trajectory& t) {
   return changes;
 }
 
+double polylineLength(const std::vector<Eigen::Vector2d>& points) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) length += (points[i] - points[i - 1]).norm();
+  return length;
+}
+
 std::vector<Eigen::Vector2d> polyline(const models::Trajectory& t) {
   std::vector<Eigen::Vector2d> points;
   points.reserve(t.samples.size());
@@ -312,9 +318,9 @@ TrajectoryFigures CandidateRefiner::measure(const models::Trajectory& trajectory
     f.max_abs_pitch = std::max(f.max_abs_pitch, std::abs(s[i].pitch));
     f.max_abs_roll = std::max(f.max_abs_roll, std::abs(s[i].roll));
     f.max_speed = std::max(f.max_speed, s[i].v);
-    if (const std::optional<terrain::Clearance> c = clearance_.at({s[i].x, s[i].y})) {
-      f.min_clearance_m = std::min(f.min_clearance_m, c->distance);
-    }
+    const std::optional<terrain::Clearance> c =
+        clearance_.hasImpassableCells() ? clearance_.at({s[i].x, s[i].y}) : std::nullopt;
+    if (c) f.min_clearance_m = std::min(f.min_clearance_m, c->distance);
     if (i > 0) f.cost += 0.5 * (integrand(s[i - 1]) + integrand(s[i])) * (s[i].t - s[i - 1].t);
   }
   if (!s.empty()) f.duration_s = s.back().t - s.front().t;
@@ -368,9 +374,7 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   if (options_.shortcut_clearance_m > 0.0) {
     const std::vector<Eigen::Vector2d> shortcut =
         shortcutPath(polyline(out.candidate), options_.shortcut_clearance_m);
-    double length = 0.0;
-    for (std::size_t i = 1; i < shortcut.size(); ++i)
-      length += (shortcut[i] - shortcut[i - 1]).norm();
+    const double length = polylineLength(shortcut);
     if (length < options_.shortcut_gain * before.length_m &&
         frames_->signatureOf(shortcut).toString() == before.homotopy) {
       if (std::optional<ocp::TranscriptionGuess> shorter =
@@ -385,13 +389,15 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   out.method = chooseRefineMethod(options_, before.length_m, before.min_clearance_m,
                                   curvatureSignChanges(out.candidate), out.method_rule);
 
-  // 3. Solve; with kAuto, a failed newton falls back to collocation.
+  // 3. Solve; with kAuto, a failed parametric solve falls back to collocation.
   const auto accept = [&](ocp::SolveStatus status, std::string reason) {
     out.status = status;
     out.reason = std::move(reason);
     if (!out.verified.ok) return;
-    fillCurvatureAtRest(out.verified.trajectory);
-    out.refined_figures = measure(out.verified.trajectory, options_.check);
+    if (!out.refined_figures) {  // transcribe() measures what it accepts
+      fillCurvatureAtRest(out.verified.trajectory);
+      out.refined_figures = measure(out.verified.trajectory, options_.check);
+    }
     const TrajectoryFigures& after = *out.refined_figures;
     out.homotopy_kept = after.homotopy == before.homotopy;
     if (out.status != ocp::SolveStatus::kConverged) return;
@@ -437,7 +443,6 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   if (out.refined_figures && !out.homotopy_kept && options_.corridor_radius_m > 0.0) {
     const terrain::ClearanceMap corridor(corridorMap(out.candidate));
     out.corridor_radius_m = options_.corridor_radius_m;
-    out.iterations_before_corridor = out.iterations;
     out.refined_figures.reset();
     transcribe(candidate_guess, before, corridor, out);
     accept(out.status, out.reason);
@@ -527,14 +532,14 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
     transcription.scheme = ocp::TranscriptionScheme::kHermiteSimpson;
   }
   // Intervals by the length of the path the optimiser starts from (the shortcut's, if used).
-  double length = 0.0;
-  for (std::size_t i = 1; i < guess.points.size(); ++i) {
-    length += (guess.points[i].head<2>() - guess.points[i - 1].head<2>()).norm();
-  }
+  std::vector<Eigen::Vector2d> guess_path;
+  guess_path.reserve(guess.points.size());
+  for (const ocp::PointVector& w : guess.points) guess_path.emplace_back(w(0), w(1));
+  const double length = polylineLength(guess_path);
   transcription.intervals =
       std::clamp(static_cast<int>(std::ceil(length / options_.interval_length_m)),
                  options_.min_intervals, options_.max_intervals);
-  const bool has_obstacles = before.min_clearance_m < 0.5 * 1e3;
+  const bool has_obstacles = clearance_.hasImpassableCells();
   // A trajectory that clips a lethal cell between its points is solved again with at least half
   // a cell of clearance (capped by min_clearance_m): the bilinear distance transform rounds a
   // lethal cell's corners.
@@ -594,6 +599,7 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
   }
   bool doubled = false;
   for (int round = 0; round <= options_.margin_retries; ++round) {
+    out.refined_figures.reset();  // each round's solution is measured anew
     const ocp::BoundaryValueProblem tightened = tighten();
     out.speed_margin_used = speed_margin;
     out.limit_margin_used = limit_margin;
@@ -629,8 +635,8 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
     std::string limit = out.verified.violation.limit;
     if (out.verified.violation.amount <= options_.parametric.limit_tolerance) {
       fillCurvatureAtRest(out.verified.trajectory);
-      const CheckReport check =
-          TrajectoryChecker(*problem_, options_.check).check(out.verified.trajectory);
+      out.refined_figures = measure(out.verified.trajectory, options_.check);
+      const CheckReport& check = out.refined_figures->check;
       if (check.ok()) return;
       limit = check.violations.front().limit;
       out.status = ocp::SolveStatus::kInfeasible;

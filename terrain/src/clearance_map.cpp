@@ -60,6 +60,7 @@ ClearanceMap::ClearanceMap(const ElevationMap& map, double max_distance)
     }
   }
   distance_.assign(geometry_.cellCount(), max_distance);
+  has_impassable_ = any;
   if (!any) return;
   const int longest = std::max(rows, cols);
   std::vector<int> v(static_cast<std::size_t>(longest));

@@ -115,7 +115,10 @@ TEST_F(RefineCommandTest, PlanRefineOnForestKeepsEveryClassAndFollowsTheContract
   }
 }
 
-TEST_F(RefineCommandTest, PlanRefineWithThePrmOnHillsAndCorridorIsFaster) {
+// The PRM's route after 0.5 s is already near the fastest: its refinement converges, reaches the
+// goal itself, and costs at most about the time the route saved by stopping in the goal region
+// (up to 0.5 m short, at up to 0.1 m/s): 1 s.
+TEST_F(RefineCommandTest, PlanRefineWithThePrmOnHillsAndCorridorConvergesToTheGoal) {
   for (const char* kind : {"hills", "corridor"}) {
     SCOPED_TRACE(kind);
     const std::string problem =

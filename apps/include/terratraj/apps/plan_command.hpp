@@ -62,6 +62,9 @@ struct PlanReportInfo {
   std::vector<search::CheckReport> checks;          ///< each solution's independent re-check
   nlohmann::json extra = nlohmann::json::object();  ///< more top-level keys (lattice, frames)
 };
+/// An independent re-check as JSON: {ok, constraint_violation, violated_limits}.
+nlohmann::json checkReportJson(const search::CheckReport& check);
+
 /// The contract's plan report (status, planner, time_limit_s, first_solution_ms,
 /// planning_time_ms, nodes, trapped_fraction, solutions[{cost_s, length_m, homotopy, file}])
 /// plus: seed, reason, best_cost_s, first_solution_cost_s, statistics, cost_history

@@ -15,6 +15,7 @@
 #include "terratraj/apps/command_context.hpp"
 #include "terratraj/models/vehicle_limits.hpp"
 #include "terratraj/ocp/solve_result.hpp"
+#include "terratraj/search/reference_frames.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
 
 namespace terratraj::apps {
@@ -45,6 +46,9 @@ struct PlotFrame {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
   Eigen::Vector2d end = Eigen::Vector2d::Zero();
 };
+
+/// The reference frames as drawn, named by HomotopySignature::frameName.
+std::vector<PlotFrame> plotFrames(const search::ReferenceFrames& frames);
 
 /// Everything the three figures show.
 struct PlotRequest {

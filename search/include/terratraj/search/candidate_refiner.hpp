@@ -9,11 +9,12 @@
 //      attitude columns come from the vehicle model;
 //   2. its figures are measured (cost, length, pitch, roll, the independent TrajectoryChecker,
 //      its HomotopySignature over the reference frames);
-//   3. the method is chosen (RefineMethod::kAuto: newton when polynomial controls suffice,
-//      collocation otherwise; the rule is chooseRefineMethod) and the problem solved from the
-//      candidate (direct transcription: warm start from it, one interval per
-//      interval_length_m, a clearance constraint from impassable cells so that the optimiser
-//      cannot slide through an obstacle);
+//   3. the method is chosen (RefineMethod::kAuto: polynomial controls through Ipopt when they
+//      suffice, collocation otherwise; the rule is chooseRefineMethod) and the problem solved
+//      from the candidate (direct transcription: warm start from it, or from its shortcut path
+//      when it is wiggly, one interval per interval_length_m, a clearance constraint from
+//      impassable cells so that the optimiser cannot slide through an obstacle, margin and
+//      corridor retries);
 //   4. the result is re-simulated independently, re-checked by TrajectoryChecker, and its
 //      signature compared with the candidate's.
 // A refinement counts as converged only when the solver converged, the re-simulation reaches
@@ -131,9 +132,11 @@ struct TrajectoryFigures {
   double length_m = 0.0;    ///< planar length [m]
   double max_abs_pitch = 0.0, max_abs_roll = 0.0;  ///< [rad]
   double max_speed = 0.0;                          ///< [m/s]
-  double min_clearance_m = 0.0;  ///< smallest clearance from impassable cells over samples [m]
-  CheckReport check;             ///< the independent re-check (TrajectoryChecker)
-  std::string homotopy;          ///< signature over the refiner's reference frames
+  /// Smallest clearance from impassable cells over the samples [m]; +infinity on a map
+  /// without any.
+  double min_clearance_m = 0.0;
+  CheckReport check;     ///< the independent re-check (TrajectoryChecker)
+  std::string homotopy;  ///< signature over the refiner's reference frames
 };
 
 /// The outcome of one refinement.
@@ -151,7 +154,6 @@ struct RefinementResult {
   int coarse_intervals = 0;        ///< the coarse solve's intervals (0: none)
   double corridor_radius_m = 0.0;  ///< the corridor of the class retry (0: none needed)
   double guess_shortcut_m = 0.0;   ///< how much shorter the shortcut guess was [m] (0: not used)
-  int iterations_before_corridor = 0;  ///< iterations spent before that retry
   ocp::SolveStatus coarse_status = ocp::SolveStatus::kError;  ///< the coarse solve's outcome
   int margin_rounds = 0;           ///< fine direct transcription solves (1 + margin retries used)
   double speed_margin_used = 0.0;  ///< the margins of the last solve (fractions)
@@ -162,7 +164,7 @@ struct RefinementResult {
   std::vector<ocp::IterationRecord> history;  ///< per iteration: terminal error, cost
   ocp::VerifiedTrajectory verified;           ///< the independent re-simulation
   std::optional<ocp::TranscriptionSolution> transcription;  ///< shooting / collocation
-  std::optional<ocp::BoundaryValueSolution> parametric;     ///< newton
+  std::optional<ocp::BoundaryValueSolution> parametric;     ///< newton, ipopt
   /// refined cost / candidate cost (NaN unless both are known).
   double costRatio() const;
 };
@@ -209,7 +211,7 @@ class CandidateRefiner {
 
 /// kAuto's rule for one candidate of planar length `length_m`, smallest clearance
 /// `min_clearance_m` and `curvature_sign_changes`: ipopt (polynomial controls) when all three
-/// are within the options' newton_* bounds, else collocation; a configured method is returned
+/// are within the options' parametric_* bounds, else collocation; a configured method is returned
 /// as it is. Writes the reason into `rule`. A failed ipopt falls back to collocation.
 RefineMethod chooseRefineMethod(const RefinementOptions& options, double length_m,
                                 double min_clearance_m, int curvature_sign_changes,

@@ -31,6 +31,9 @@ class ClearanceMap {
   /// std::nullopt outside the map or for NaN coordinates. Never throws.
   std::optional<Clearance> at(const Eigen::Vector2d& local) const;
 
+  /// Whether the map has any lethal or no-data cell (else every clearance is max_distance).
+  bool hasImpassableCells() const { return has_impassable_; }
+
   /// Clearance of a cell centre [m].
   double cellClearance(CellIndex c) const { return distance_[geometry_.linearIndex(c)]; }
 
@@ -39,6 +42,7 @@ class ClearanceMap {
  private:
   GridGeometry geometry_;
   std::vector<double> distance_;
+  bool has_impassable_ = false;
 };
 
 }  // namespace terratraj::terrain
