@@ -14,6 +14,11 @@
 namespace terratraj::models {
 namespace {
 
+// Index of the running cost's integral in the CVODES state (x, y, heading, cost). The cost is
+// a state, under the same error test, rather than a CVODES quadrature: CVODES 6.4's quadrature
+// sensitivities read uninitialised memory with the Adams method (the gradient depended on the
+// heap's contents), and without error control the integral was not smooth in the parameters.
+constexpr int kCostState = 3;
 // What the C callbacks need. Exceptions never cross them: nothing here throws.
 struct CallbackData {
   const RoverKinematics* kinematics = nullptr;
@@ -23,7 +28,7 @@ struct CallbackData {
   RoverRates rates;
   double v = 0.0, omega = 0.0;
   Eigen::VectorXd dv_dq, domega_dq;
-  // The point `rates` was computed at: CVODES evaluates the state, sensitivity and quadrature
+  // The point `rates` was computed at: CVODES evaluates the state and sensitivity
   // right-hand sides at the same (t, y), and the attitude is the expensive part.
   bool cached = false;
   double cached_t = 0.0;
@@ -61,10 +66,16 @@ bool evaluateRates(CallbackData& data, realtype t, N_Vector y) {
   return true;
 }
 
+// The running cost, when there is one, is the fourth state (kCostState).
 int roverRhs(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
   CallbackData& data = *static_cast<CallbackData*>(user_data);
   if (!evaluateRates(data, t, y)) return -1;  // unrecoverable: the vehicle cannot be placed there
-  Eigen::Map<Eigen::Vector3d>(N_VGetArrayPointer(ydot)) = data.rates.rate;
+  double* rate = N_VGetArrayPointer(ydot);
+  Eigen::Map<Eigen::Vector3d> state_rate(rate);
+  state_rate = data.rates.rate;
+  if (data.integrand != nullptr) {
+    rate[kCostState] = data.integrand->evaluate(t, data.rates, data.v, data.omega, nullptr, nullptr);
+  }
   return 0;
 }
 
@@ -74,37 +85,21 @@ int roverSensitivityRhs(int ns, realtype t, N_Vector y, N_Vector /*ydot*/, N_Vec
   if (!evaluateRates(data, t, y)) return -1;
   double v = 0.0, omega = 0.0;
   data.controls->evaluate(t, v, omega, data.dv_dq.data(), data.domega_dq.data());
-  for (int i = 0; i < ns; ++i) {
-    const Eigen::Map<const Eigen::Vector3d> s(N_VGetArrayPointer(ys[i]));
-    Eigen::Map<Eigen::Vector3d>(N_VGetArrayPointer(ys_dot[i])) =
-        data.rates.d_state * s + data.rates.d_input.col(0) * data.dv_dq(i) +
-        data.rates.d_input.col(1) * data.domega_dq(i);
+  Eigen::Vector3d dl_dstate = Eigen::Vector3d::Zero();
+  Eigen::Vector2d dl_dinput = Eigen::Vector2d::Zero();
+  if (data.integrand != nullptr) {
+    data.integrand->evaluate(t, data.rates, v, omega, &dl_dstate, &dl_dinput);
   }
-  return 0;
-}
-
-int integrandRhs(realtype t, N_Vector y, N_Vector yq_dot, void* user_data) {
-  CallbackData& data = *static_cast<CallbackData*>(user_data);
-  if (!evaluateRates(data, t, y)) return -1;
-  N_VGetArrayPointer(yq_dot)[0] =
-      data.integrand->evaluate(t, data.rates, data.v, data.omega, nullptr, nullptr);
-  return 0;
-}
-
-int integrandSensitivityRhs(int ns, realtype t, N_Vector y, N_Vector* ys, N_Vector /*yq_dot*/,
-                            N_Vector* yqs_dot, void* user_data, N_Vector /*tmp*/,
-                            N_Vector /*tmp_q*/) {
-  CallbackData& data = *static_cast<CallbackData*>(user_data);
-  if (!evaluateRates(data, t, y)) return -1;
-  double v = 0.0, omega = 0.0;
-  data.controls->evaluate(t, v, omega, data.dv_dq.data(), data.domega_dq.data());
-  Eigen::Vector3d dl_dstate;
-  Eigen::Vector2d dl_dinput;
-  data.integrand->evaluate(t, data.rates, v, omega, &dl_dstate, &dl_dinput);
   for (int i = 0; i < ns; ++i) {
     const Eigen::Map<const Eigen::Vector3d> s(N_VGetArrayPointer(ys[i]));
-    N_VGetArrayPointer(yqs_dot[i])[0] =
-        dl_dstate.dot(s) + dl_dinput(0) * data.dv_dq(i) + dl_dinput(1) * data.domega_dq(i);
+    double* s_dot = N_VGetArrayPointer(ys_dot[i]);
+    Eigen::Map<Eigen::Vector3d> state_dot(s_dot);
+    state_dot = data.rates.d_state * s + data.rates.d_input.col(0) * data.dv_dq(i) +
+                data.rates.d_input.col(1) * data.domega_dq(i);
+    if (data.integrand != nullptr) {
+      s_dot[kCostState] =
+          dl_dstate.dot(s) + dl_dinput(0) * data.dv_dq(i) + dl_dinput(1) * data.domega_dq(i);
+    }
   }
   return 0;
 }
@@ -122,11 +117,14 @@ std::string flagName(int flag) {
 // re-created only when the number of sensitivity parameters changes.
 class RoverIntegrator::CvodesSession {
  public:
-  CvodesSession(const IntegratorOptions& options, int parameter_count, bool quadrature)
-      : parameter_count_(parameter_count), quadrature_(quadrature), max_steps_(options.max_steps) {
+  CvodesSession(const IntegratorOptions& options, int parameter_count, bool with_cost)
+      : parameter_count_(parameter_count),
+        with_cost_(with_cost),
+        state_size_(with_cost ? 4 : 3),
+        max_steps_(options.max_steps) {
     ok_ = SUNContext_Create(nullptr, &context_) == 0;
     if (!ok_) return;
-    y_ = N_VNew_Serial(3, context_);
+    y_ = N_VNew_Serial(state_size_, context_);
     memory_ = CVodeCreate(CV_ADAMS, context_);
     ok_ = y_ != nullptr && memory_ != nullptr;
     if (!ok_) return;
@@ -140,17 +138,7 @@ class RoverIntegrator::CvodesSession {
     if (!ok_) return;
     solver_ = SUNNonlinSol_FixedPoint(y_, 0, context_);
     ok_ = solver_ != nullptr && CVodeSetNonlinearSolver(memory_, solver_) == CV_SUCCESS;
-    if (!ok_) return;
-    if (quadrature_) {
-      yq_ = N_VNew_Serial(1, context_);
-      ok_ = yq_ != nullptr;
-      if (!ok_) return;
-      N_VConst(0.0, yq_);
-      // No error control on the quadrature: the steps are chosen for the state.
-      ok_ = CVodeQuadInit(memory_, integrandRhs, yq_) == CV_SUCCESS;
-      if (!ok_) return;
-    }
-    if (!options.sensitivities || parameter_count_ == 0) return;
+    if (!ok_ || !options.sensitivities || parameter_count_ == 0) return;
     ys_ = N_VCloneVectorArray(parameter_count_, y_);
     ok_ = ys_ != nullptr;
     if (!ok_) return;
@@ -169,17 +157,9 @@ class RoverIntegrator::CvodesSession {
           CVodeSetNonlinearSolverSensSim(memory_, sensitivity_solver_) == CV_SUCCESS;
     data_.dv_dq.resize(parameter_count_);
     data_.domega_dq.resize(parameter_count_);
-    if (!ok_ || !quadrature_) return;
-    yqs_ = N_VCloneVectorArray(parameter_count_, yq_);
-    ok_ = yqs_ != nullptr;
-    if (!ok_) return;
-    for (int i = 0; i < parameter_count_; ++i) N_VConst(0.0, yqs_[i]);
-    ok_ = CVodeQuadSensInit(memory_, integrandSensitivityRhs, yqs_) == CV_SUCCESS;
   }
 
   ~CvodesSession() {
-    if (yqs_ != nullptr) N_VDestroyVectorArray(yqs_, parameter_count_);
-    if (yq_ != nullptr) N_VDestroy(yq_);
     if (ys_ != nullptr) N_VDestroyVectorArray(ys_, parameter_count_);
     if (memory_ != nullptr) CVodeFree(&memory_);
     if (sensitivity_solver_ != nullptr) SUNNonlinSolFree(sensitivity_solver_);
@@ -192,8 +172,8 @@ class RoverIntegrator::CvodesSession {
 
   bool ok() const { return ok_; }
   /// Whether this session serves a call with these settings.
-  bool matches(int parameter_count, bool quadrature) const {
-    return parameter_count_ == parameter_count && quadrature_ == quadrature;
+  bool matches(int parameter_count, bool with_cost) const {
+    return parameter_count_ == parameter_count && with_cost_ == with_cost;
   }
 
   void run(const RoverKinematics& kinematics, AttitudeWorkspace& workspace,
@@ -208,6 +188,7 @@ class RoverIntegrator::CvodesSession {
     data_.failure = AttitudeStatus::kOk;
     data_.evaluations = 0;
     data_.last_error[0] = '\0';
+    N_VConst(0.0, y_);
     Eigen::Map<Eigen::Vector3d>(N_VGetArrayPointer(y_)) = initial;
     const bool with_sensitivities = ys_ != nullptr;
     if (CVodeReInit(memory_, 0.0, y_) != CV_SUCCESS ||
@@ -220,19 +201,6 @@ class RoverIntegrator::CvodesSession {
       if (CVodeSensReInit(memory_, CV_SIMULTANEOUS, ys_) != CV_SUCCESS) {
         fail(result, IntegrationStatus::kSolverFailure,
              "CVODES sensitivity re-initialisation failed");
-        return;
-      }
-    }
-    if (quadrature_) {
-      N_VConst(0.0, yq_);
-      bool reinitialised = CVodeQuadReInit(memory_, yq_) == CV_SUCCESS;
-      if (reinitialised && yqs_ != nullptr) {
-        for (int i = 0; i < parameter_count_; ++i) N_VConst(0.0, yqs_[i]);
-        reinitialised = CVodeQuadSensReInit(memory_, yqs_) == CV_SUCCESS;
-      }
-      if (!reinitialised) {
-        fail(result, IntegrationStatus::kSolverFailure,
-             "CVODES quadrature re-initialisation failed");
         return;
       }
     }
@@ -282,16 +250,11 @@ class RoverIntegrator::CvodesSession {
         result.sensitivity.col(i) = Eigen::Map<const Eigen::Vector3d>(N_VGetArrayPointer(ys_[i]));
       }
     }
-    if (quadrature_ && duration > 0.0) {
-      if (CVodeGetQuadDky(memory_, duration, 0, yq_) != CV_SUCCESS ||
-          (yqs_ != nullptr && CVodeGetQuadSensDky(memory_, duration, 0, yqs_) != CV_SUCCESS)) {
-        fail(result, IntegrationStatus::kSolverFailure, "CVodeGetQuadDky failed");
-        return;
-      }
-      result.integral = N_VGetArrayPointer(yq_)[0];
-      if (yqs_ != nullptr) {
+    if (with_cost_ && duration > 0.0) {
+      result.integral = N_VGetArrayPointer(y_)[kCostState];
+      if (with_sensitivities) {
         for (int i = 0; i < parameter_count_; ++i) {
-          result.integral_sensitivity(i) = N_VGetArrayPointer(yqs_[i])[0];
+          result.integral_sensitivity(i) = N_VGetArrayPointer(ys_[i])[kCostState];
         }
       }
     }
@@ -358,13 +321,12 @@ class RoverIntegrator::CvodesSession {
   }
 
   int parameter_count_;
-  bool quadrature_;
+  bool with_cost_;
+  int state_size_;  // 3, or 4 with the running cost's integral
   bool ok_ = false;
   SUNContext context_ = nullptr;
   N_Vector y_ = nullptr;
   N_Vector* ys_ = nullptr;
-  N_Vector yq_ = nullptr;
-  N_Vector* yqs_ = nullptr;
   void* memory_ = nullptr;
   SUNNonlinearSolver solver_ = nullptr;
   SUNNonlinearSolver sensitivity_solver_ = nullptr;

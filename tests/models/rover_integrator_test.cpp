@@ -197,6 +197,96 @@ TEST(RoverIntegrator, SensitivitiesMatchFiniteDifferences) {
   }
 }
 
+// A smooth running cost that depends on the state and both inputs.
+class MixedIntegrand final : public RunningIntegrand {
+ public:
+  double evaluate(double /*t*/, const RoverRates& /*rates*/, double v, double omega,
+                  Eigen::Vector3d* d_state, Eigen::Vector2d* d_input) const override {
+    if (d_state != nullptr) d_state->setZero();
+    if (d_input != nullptr) *d_input << 2 * v + omega * std::cos(v), std::sin(v);
+    return v * v + omega * std::sin(v);
+  }
+};
+
+// A cost that depends on the state: its sensitivities go through S(t).
+class StateIntegrand final : public RunningIntegrand {
+ public:
+  double evaluate(double /*t*/, const RoverRates& rates, double v, double /*omega*/,
+                  Eigen::Vector3d* d_state, Eigen::Vector2d* d_input) const override {
+    // pitch^2 + roll^2 of the terrain under the vehicle, times the speed.
+    const AttitudeResult& a = rates.attitude;
+    const double s = a.attitude.pitch * a.attitude.pitch + a.attitude.roll * a.attitude.roll;
+    if (d_state != nullptr) {
+      *d_state = v * 2 *
+                 (a.attitude.pitch * a.jacobian.row(2) + a.attitude.roll * a.jacobian.row(1))
+                     .transpose();
+    }
+    if (d_input != nullptr) *d_input << s, 0.0;
+    return v * s;
+  }
+};
+
+// The running integral and its sensitivities: central differences, RK4, and the same numbers
+// whatever the integrator did before (CVODES 6.4's quadrature sensitivities, used until they
+// were found to read uninitialised memory, gave a history- and heap-dependent gradient).
+TEST(RoverIntegrator, IntegralSensitivitiesMatchFiniteDifferencesWhateverCameBefore) {
+  const ElevationMap map = generated(terrain::TerrainKind::kHills);
+  const TerrainSurface surface(map, Interpolation::kBicubic);
+  const PointAttitudeModel point(surface);
+  const RoverKinematics kinematics(point);
+  const PolynomialControls controls({0.5, 0.05, -0.002}, {0.2, -0.03, 0.001});
+  const PolynomialControls other({0.8, -0.04}, {-0.1, 0.02, 0.002});
+  const Eigen::Vector3d start(8.0, 18.0, 0.3);
+  const MixedIntegrand mixed;
+  const StateIntegrand state;
+  for (const RunningIntegrand* integrand :
+       std::initializer_list<const RunningIntegrand*>{&mixed, &state}) {
+    SCOPED_TRACE(integrand == &mixed ? "inputs only" : "state");
+    IntegratorOptions options = cvodes(1e-11);
+    options.sensitivities = true;
+    RoverIntegrator integrator(kinematics, options);
+    IntegrationResult warm_up, first, again;
+    integrator.integrate(start, other, 9.0, {}, warm_up, integrand);
+    integrator.integrate(start, controls, 6.0, {}, first, integrand);
+    integrator.integrate(start, other, 3.0, {}, warm_up, integrand);
+    integrator.integrate(start, controls, 6.0, {}, again, integrand);
+    ASSERT_EQ(first.status, IntegrationStatus::kOk) << first.message;
+    EXPECT_EQ(first.integral, again.integral);
+    EXPECT_EQ(first.integral_sensitivity, again.integral_sensitivity);
+    EXPECT_EQ(first.sensitivity, again.sensitivity);
+
+    IntegratorOptions rk4 = fixedStep(IntegrationMethod::kRk4, 0.001);
+    RoverIntegrator reference(kinematics, rk4);
+    IntegrationResult fixed;
+    reference.integrate(start, controls, 6.0, {}, fixed, integrand);
+    EXPECT_NEAR(first.integral, fixed.integral, 1e-8 * std::max(1.0, std::abs(fixed.integral)));
+
+    const Eigen::VectorXd q = controls.parameters();
+    IntegratorOptions plain = options;
+    plain.sensitivities = false;
+    const double h = 1e-5;
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      PolynomialControls plus = controls, minus = controls;
+      Eigen::VectorXd qp = q, qm = q;
+      qp(i) += h;
+      qm(i) -= h;
+      plus.setParameters(qp);
+      minus.setParameters(qm);
+      RoverIntegrator fresh(kinematics, plain);
+      IntegrationResult up, down;
+      fresh.integrate(start, plus, 6.0, {}, up, integrand);
+      fresh.integrate(start, minus, 6.0, {}, down, integrand);
+      const double fd = (up.integral - down.integral) / (2 * h);
+      // The state-dependent cost reads the attitude's Jacobian, only piecewise smooth on a
+      // bicubic surface: there even RK4's exact discrete derivative and its own central
+      // differences differ by 2.5e-5 (relative).
+      const double tolerance = integrand == &mixed ? 1e-6 : 2e-4;
+      EXPECT_NEAR(first.integral_sensitivity(i), fd, tolerance * std::max(1.0, std::abs(fd)))
+          << "parameter " << i;
+    }
+  }
+}
+
 TEST(RoverIntegrator, SamplesAtRequestedTimes) {
   const ElevationMap map = generated(terrain::TerrainKind::kHills);
   const TerrainSurface surface(map, Interpolation::kBicubic);
