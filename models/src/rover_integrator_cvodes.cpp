@@ -74,7 +74,8 @@ int roverRhs(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
   Eigen::Map<Eigen::Vector3d> state_rate(rate);
   state_rate = data.rates.rate;
   if (data.integrand != nullptr) {
-    rate[kCostState] = data.integrand->evaluate(t, data.rates, data.v, data.omega, nullptr, nullptr);
+    rate[kCostState] =
+        data.integrand->evaluate(t, data.rates, data.v, data.omega, nullptr, nullptr);
   }
   return 0;
 }

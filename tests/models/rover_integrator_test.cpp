@@ -217,9 +217,9 @@ class StateIntegrand final : public RunningIntegrand {
     const AttitudeResult& a = rates.attitude;
     const double s = a.attitude.pitch * a.attitude.pitch + a.attitude.roll * a.attitude.roll;
     if (d_state != nullptr) {
-      *d_state = v * 2 *
-                 (a.attitude.pitch * a.jacobian.row(2) + a.attitude.roll * a.jacobian.row(1))
-                     .transpose();
+      *d_state =
+          v * 2 *
+          (a.attitude.pitch * a.jacobian.row(2) + a.attitude.roll * a.jacobian.row(1)).transpose();
     }
     if (d_input != nullptr) *d_input << s, 0.0;
     return v * s;
