@@ -111,13 +111,6 @@ void dumpFailure(const models::Trajectory& candidate, const std::string& benchma
                                             ".csv");
 }
 
-double bangBangBound(const World& w) {
-  const models::VehicleLimits& l = w.problem.limits;
-  const double d = w.distance();
-  return l.v_max * l.v_max / l.a_max >= d ? 2.0 * std::sqrt(d / l.a_max)
-                                          : d / l.v_max + l.v_max / l.a_max;
-}
-
 double mean(const std::vector<double>& v) {
   double sum = 0.0;
   for (double x : v) sum += x;
@@ -165,8 +158,8 @@ void refineBenchmark(benchmark::State& state, const std::string& name, Planner p
         const double before = found[k].samples.back().t - found[k].samples.front().t;
         const double after = r.verified.final_time;
         ratios.push_back(after / before);
-        bound_ratios.push_back(after / bangBangBound(w));
-        candidate_bound_ratios.push_back(before / bangBangBound(w));
+        bound_ratios.push_back(after / w.lowerBoundTime());
+        candidate_bound_ratios.push_back(before / w.lowerBoundTime());
         // Independent of the refiner: the class recomputed and the limits re-checked here.
         std::vector<Eigen::Vector2d> xy_before, xy_after;
         for (const auto& s : found[k].samples) xy_before.emplace_back(s.x, s.y);
