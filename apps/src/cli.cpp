@@ -3,7 +3,9 @@
 #include <spdlog/sinks/ostream_sink.h>
 #include <CLI/CLI.hpp>
 
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <new>
 #include <ostream>
 #include <sstream>
@@ -11,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "terratraj/apps/bench_command.hpp"
 #include "terratraj/apps/demo_command.hpp"
 #include "terratraj/apps/lut_commands.hpp"
 #include "terratraj/apps/plan_command.hpp"
@@ -46,6 +49,16 @@ int reportError(const std::string& message, int status, const CommandContext& co
     context.out << nlohmann::json{{"status", "error"}, {"error", message}}.dump() << '\n';
   }
   return status;
+}
+
+// The real DEMs: $TERRATRAJ_DATA_DIR, else the repository's ../shared/data when it exists.
+std::string defaultDataDir() {
+  const char* configured = std::getenv("TERRATRAJ_DATA_DIR");
+  if (configured != nullptr) return configured;
+  const std::filesystem::path shared =
+      std::filesystem::path(TERRATRAJ_SOURCE_DIR).parent_path() / "shared" / "data";
+  std::error_code error;
+  return std::filesystem::exists(shared, error) ? shared.string() : std::string();
 }
 
 std::string kindsHelp() {
@@ -190,6 +203,46 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                              "FILE-convergence)");
   refine_command->add_flag("--json", json_flag, "print the report as one JSON object");
 
+  BenchOptions bench;
+  bench.settings.data_dir = defaultDataDir();
+  BenchMergeOptions bench_merge;
+  CLI::App* bench_command = app.add_subcommand(
+      "bench",
+      "Benchmark suites (docs/benchmarks.md): convergence (every boundary-value solver on the "
+      "004 problem sets and random problems on the real DEMs), planners (001's size and "
+      "expansiveness sweeps, the lattice searches), refine (candidates against their "
+      "refinements), tables (003 IV: physics-derived against data-driven tables). Writes one "
+      "JSON file per run; `bench merge` joins shards.");
+  bench_command->add_option("SUITE", bench.suite, "convergence | planners | refine | tables");
+  bench_command->add_flag("--quick", bench.settings.quick,
+                          "a small subset of every set (seconds instead of minutes)");
+  bench_command->add_option("--seed", bench.settings.seed, "first seed of every random choice")
+      ->capture_default_str();
+  bench_command->add_option("--seeds", bench.settings.seeds, "repetitions (maps, planner seeds)")
+      ->capture_default_str();
+  bench_command
+      ->add_option("--time-limit", bench.settings.time_limit_s,
+                   "planners: longest anytime budget [s]")
+      ->capture_default_str();
+  bench_command
+      ->add_option("--data-dir", bench.settings.data_dir,
+                   "folder of the real DEMs (\"\" skips them)")
+      ->capture_default_str();
+  bench_command->add_option("--out", bench.out, "result file (default bench-SUITE.json)");
+  bench_command->add_option("--plot", bench.plot, "also draw the figures: FILE.png and siblings");
+  bench_command->add_option("--shard", bench.shard, "K/N: run every N-th case from the K-th")
+      ->capture_default_str();
+  bench_command->add_option("--jobs", bench.jobs, "worker processes")->capture_default_str();
+  bench_command->add_option("--cases", bench.cases, "case indices (used by workers)")->group("");
+  bench_command->add_option("--worker-tag", bench.worker_tag, "(used by workers)")->group("");
+  bench_command->add_flag("--json", json_flag, "print the result (without rows) as JSON");
+  CLI::App* bench_merge_command =
+      bench_command->add_subcommand("merge", "Join result files of shards into one.");
+  bench_merge_command->add_option("FILES", bench_merge.inputs, "result files")->required();
+  bench_merge_command->add_option("--out", bench_merge.out, "merged file")->capture_default_str();
+  bench_merge_command->add_option("--plot", bench_merge.plot, "also draw the figures");
+  bench_merge_command->add_flag("--json", json_flag, "print the result (without rows) as JSON");
+
   PrimitivesOptions primitives;
   CLI::App* primitives_command = app.add_subcommand(
       "primitives",
@@ -275,6 +328,12 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   try {
     if (*demo_command) return runDemo(demo, context);
+    if (*bench_merge_command) return runBenchMerge(bench_merge, context);
+    if (*bench_command) {
+      if (bench.suite.empty())
+        throw InputError("bench: name a suite (convergence, planners, refine, tables) or merge");
+      return runBench(bench, context);
+    }
     if (*info_command) return runTerrainInfo(info, context);
     if (*generate_command) {
       generate.generator.kind = *terrain::parseTerrainKind(kind_name);

@@ -146,6 +146,33 @@ std::string readLog(const fs::path& log) {
   return s;
 }
 
+// Writes `script` into `work` and runs it on `request_file` with Debian's python3 (or
+// $TERRATRAJ_PYTHON); "" on success, else why it failed (the package to install, or the
+// script's output).
+std::string runPlotScript(const char* script_text, const fs::path& work,
+                          const fs::path& request_file, CommandContext& context) {
+  const fs::path script = work / "plot.py", log = work / "plot.log";
+  writeText(script, script_text);
+  const char* configured = std::getenv("TERRATRAJ_PYTHON");
+  const std::string python =
+      configured != nullptr && *configured != '\0' ? configured : "/usr/bin/python3";
+  context.log->info("plotting with {} ({})", python, request_file.string());
+  const int status = runPython(python, script, request_file, log);
+  if (status == 0) return "";
+  const std::string output = readLog(log);
+  std::string why;
+  if (status == 127 || status < 0) {
+    why = "cannot run " + python + " (install Debian's python3, or set TERRATRAJ_PYTHON)";
+  } else if (output.find("No module named") != std::string::npos) {
+    why = python + " lacks numpy or matplotlib (apt-get install python3-matplotlib): " + output;
+  } else {
+    why = "the plotting script failed (exit " + std::to_string(status) + "; request in " +
+          request_file.string() + "): " + output;
+  }
+  context.log->warn("--plot: {}", why);
+  return why;
+}
+
 }  // namespace
 
 std::vector<PlotFrame> plotFrames(const search::ReferenceFrames& frames) {
@@ -181,33 +208,41 @@ PlotOutcome writePlots(const PlotRequest& request, const terrain::ElevationMap& 
     throw InputError("--plot: cannot create '" + work.string() + "': " + error.message());
   }
   const fs::path elevation = work / "elevation.f32", mask = work / "mask.u8";
-  const fs::path request_file = work / "request.json", script = work / "plot_results.py";
-  const fs::path log = work / "plot.log";
+  const fs::path request_file = work / "request.json";
   writeRaster(map, elevation, mask);
   writeText(request_file, requestJson(request, map.geometry(), elevation, mask, files).dump(1));
-  writeText(script, detail::kPlotScript);
 
-  const char* configured = std::getenv("TERRATRAJ_PYTHON");
-  const std::string python =
-      configured != nullptr && *configured != '\0' ? configured : "/usr/bin/python3";
-  context.log->info("plotting with {} -> {}", python, files.map.string());
-  const int status = runPython(python, script, request_file, log);
   PlotOutcome outcome;
-  if (status == 0) {
-    outcome.files = files;
-    return outcome;
+  outcome.error = runPlotScript(detail::kPlotScript, work, request_file, context);
+  if (outcome.error.empty()) outcome.files = files;
+  return outcome;
+}
+
+BenchPlotOutcome writeBenchPlots(const fs::path& result_file, const fs::path& png,
+                                 CommandContext& context) {
+  const fs::path work = png.parent_path() / (png.stem().string() + "-plot");
+  std::error_code error;
+  fs::create_directories(work, error);
+  if (error) {
+    throw InputError("--plot: cannot create '" + work.string() + "': " + error.message());
   }
-  const std::string output = readLog(log);
-  if (status == 127 || status < 0) {
-    outcome.error = "cannot run " + python + " (install Debian's python3, or set TERRATRAJ_PYTHON)";
-  } else if (output.find("No module named") != std::string::npos) {
-    outcome.error =
-        python + " lacks numpy or matplotlib (apt-get install python3-matplotlib): " + output;
-  } else {
-    outcome.error = "the plotting script failed (exit " + std::to_string(status) + "; request in " +
-                    request_file.string() + "): " + output;
+  const fs::path request_file = work / "request.json", listing = work / "files.json";
+  fs::remove(listing, error);
+  writeText(request_file, nlohmann::json{{"result", fs::absolute(result_file).string()},
+                                         {"png", fs::absolute(png).string()},
+                                         {"files", fs::absolute(listing).string()}}
+                              .dump(1));
+  BenchPlotOutcome outcome;
+  outcome.error = runPlotScript(detail::kBenchPlotScript, work, request_file, context);
+  if (!outcome.error.empty()) return outcome;
+  try {
+    std::ifstream in(listing);
+    for (const nlohmann::json& file : nlohmann::json::parse(in)) {
+      outcome.files.emplace_back(file.get<std::string>());
+    }
+  } catch (const std::exception&) {
+    outcome.error = "the plotting script wrote no list of figures (" + listing.string() + ")";
   }
-  context.log->warn("--plot: {}", outcome.error);
   return outcome;
 }
 

@@ -83,4 +83,14 @@ struct PlotOutcome {
 PlotOutcome writePlots(const PlotRequest& request, const terrain::ElevationMap& map,
                        const std::filesystem::path& png, CommandContext& context);
 
+/// The figures of a `terratraj bench` result file (scripts/plot_bench.py, embedded): `png` and
+/// siblings named after it (which depend on the suite). Returns the files written, or why none
+/// were (as writePlots). Throws InputError when the folder cannot be written.
+struct BenchPlotOutcome {
+  std::vector<std::filesystem::path> files;
+  std::string error;  ///< empty on success
+};
+BenchPlotOutcome writeBenchPlots(const std::filesystem::path& result_file,
+                                 const std::filesystem::path& png, CommandContext& context);
+
 }  // namespace terratraj::apps

@@ -42,12 +42,13 @@ BoundaryValueProblem singleHillProblem(double alpha);
 
 /// How random problems are drawn on an elevation model.
 struct RandomProblemOptions {
-  int count = 20;                  ///< problems, >= 1
-  std::uint64_t seed = 1;          ///< same seed, same problems
-  double min_distance_m = 3.0;     ///< start-goal distance range [m]
+  int count = 20;               ///< problems, >= 1
+  std::uint64_t seed = 1;       ///< same seed, same problems
+  double min_distance_m = 3.0;  ///< start-goal distance range [m]
   double max_distance_m = 6.0;
-  double max_heading_change = 1.0;  ///< |goal heading - bearing| and |start heading - bearing| [rad]
-  double edge_margin_m = 2.0;       ///< start and goal at least this far inside the data [m]
+  double max_heading_change =
+      1.0;                     ///< |goal heading - bearing| and |start heading - bearing| [rad]
+  double edge_margin_m = 2.0;  ///< start and goal at least this far inside the data [m]
 };
 
 /// `count` cruise problems on `map` with start and goal on cells holding data (and their

@@ -31,8 +31,7 @@ std::unique_ptr<models::TerrainFollowingModel> makeBenchmarkVehicle(
     BenchmarkVehicle vehicle, const terrain::TerrainSurface& surface);
 
 /// A generated map of size x size cells of kBenchmarkCell.
-terrain::ElevationMap generateBenchmarkMap(terrain::TerrainKind kind, int size,
-                                           std::uint64_t seed);
+terrain::ElevationMap generateBenchmarkMap(terrain::TerrainKind kind, int size, std::uint64_t seed);
 
 /// A map, a vehicle on it and a planning problem. Not copyable: the problem points into it.
 struct BenchmarkWorld {

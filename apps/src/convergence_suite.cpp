@@ -1,0 +1,351 @@
+// `terratraj bench convergence`: every boundary-value solver on the problem sets of 004_...
+// (flat 45-goal fan, rough 94-edge lattice, slope-dwell hill with alpha 0, 1, 2) and on seeded
+// random problems on the real DEMs. One case per (problem, solver); each result is the
+// independent re-simulation's, not the solver's claim.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "terratraj/apps/benchmark_suite.hpp"
+#include "terratraj/apps/json_number.hpp"
+#include "terratraj/models/point_attitude_model.hpp"
+#include "terratraj/models/rocker_bogie_attitude_model.hpp"
+#include "terratraj/ocp/boundary_value_solver.hpp"
+#include "terratraj/ocp/direct_transcription.hpp"
+#include "terratraj/ocp/problem_sets.hpp"
+#include "terratraj/ocp/trajectory_verifier.hpp"
+#include "terratraj/ocp/transcription_guess.hpp"
+#include "terratraj/ocp/transcription_model.hpp"
+#include "terratraj/terrain/input_error.hpp"
+#include "terratraj/terrain/raster_io.hpp"
+#include "terratraj/terrain/terrain_surface.hpp"
+
+namespace terratraj::apps {
+namespace {
+
+namespace sets = ocp::problem_sets;
+
+const char* const kSolvers[] = {"newton_fd", "newton", "ipopt", "ceres", "shooting", "collocation"};
+
+// A problem set: its map, vehicle and problems, built on first use (one per process).
+struct ProblemSetData {
+  ProblemSetData() = default;
+  ProblemSetData(const ProblemSetData&) = delete;
+  ProblemSetData& operator=(const ProblemSetData&) = delete;
+  terrain::ElevationMap map;
+  std::unique_ptr<terrain::TerrainSurface> surface;
+  std::unique_ptr<models::TerrainFollowingModel> vehicle;
+  std::vector<ocp::BoundaryValueProblem> problems;
+};
+
+struct ProblemSetSpec {
+  std::string name;
+  std::string vehicle;  // "point" or "rocker_bogie"
+  int count = 0;        // problems in the set (after the quick cut)
+  std::function<std::unique_ptr<ProblemSetData>()> build;
+};
+
+std::unique_ptr<models::TerrainFollowingModel> makeVehicle(const std::string& name,
+                                                           const terrain::TerrainSurface& s) {
+  if (name == "rocker_bogie") return std::make_unique<models::RockerBogieAttitudeModel>(s);
+  return std::make_unique<models::PointAttitudeModel>(s);
+}
+
+// The surface and vehicle point into the map: the data is built in place and never moved.
+std::unique_ptr<ProblemSetData> finish(terrain::ElevationMap map, const std::string& vehicle,
+                                       std::vector<ocp::BoundaryValueProblem> problems) {
+  auto data = std::make_unique<ProblemSetData>();
+  data->map = std::move(map);
+  data->problems = std::move(problems);
+  data->surface =
+      std::make_unique<terrain::TerrainSurface>(data->map, terrain::Interpolation::kBicubic);
+  data->vehicle = makeVehicle(vehicle, *data->surface);
+  return data;
+}
+
+// Every `stride`-th problem of `all` (the quick suite's cut), at most `count`.
+std::vector<ocp::BoundaryValueProblem> cut(std::vector<ocp::BoundaryValueProblem> all, int count) {
+  if (count >= static_cast<int>(all.size())) return all;
+  std::vector<ocp::BoundaryValueProblem> out;
+  const double stride = static_cast<double>(all.size()) / count;
+  for (int i = 0; i < count; ++i) out.push_back(all[static_cast<std::size_t>(i * stride)]);
+  return out;
+}
+
+// A real DEM rescaled to rover scale: `cell` [m] and z_scale keep or soften its slopes.
+struct DemSpec {
+  const char* name;
+  const char* file;
+  std::optional<double> cell;
+  double z_scale;
+};
+
+const DemSpec kDems[] = {
+    {"dem_moon", "dem_moon.tif", std::nullopt, 1.0},             // 2.43 m cells, lunar slopes
+    {"davosdorf", "davosdorf.tif", 0.25, 0.0125},                // 10 m -> 0.25 m, slopes halved
+    {"west_bijou_gully", "west_bijou_gully.asc", 0.5, 1.0 / 6},  // 3 m -> 0.5 m, slopes kept
+};
+
+std::vector<ProblemSetSpec> problemSets(const BenchmarkSettings& settings) {
+  const bool quick = settings.quick;
+  std::vector<ProblemSetSpec> specs;
+  specs.push_back({"flat_fan", "point", quick ? 5 : 45, [quick] {
+                     return finish(sets::flatMap(), "point", cut(sets::flatFan(), quick ? 5 : 45));
+                   }});
+  specs.push_back({"rough_lattice", "rocker_bogie", quick ? 6 : 94, [quick] {
+                     return finish(sets::roughMap(), "rocker_bogie",
+                                   cut(sets::roughLattice(), quick ? 6 : 94));
+                   }});
+  specs.push_back({"slope_dwell", "point", 3, [] {
+                     std::vector<ocp::BoundaryValueProblem> problems;
+                     for (const double alpha : {0.0, 1.0, 2.0}) {
+                       problems.push_back(sets::singleHillProblem(alpha));
+                     }
+                     return finish(sets::singleHillMap(), "point", problems);
+                   }});
+  if (settings.data_dir.empty()) return specs;
+  const int per_dem = quick ? 2 : 10;
+  for (const DemSpec& dem : kDems) {
+    const std::filesystem::path path = settings.data_dir / dem.file;
+    const std::uint64_t seed = settings.seed;
+    specs.push_back({dem.name, "point", per_dem, [path, dem, per_dem, seed] {
+                       terrain::RasterLoadOptions load;
+                       load.cell = dem.cell;
+                       load.z_scale = dem.z_scale;
+                       terrain::ElevationMap map = terrain::loadElevationMap(path, load);
+                       sets::RandomProblemOptions random;
+                       random.count = per_dem;
+                       random.seed = seed;
+                       std::vector<ocp::BoundaryValueProblem> problems =
+                           sets::randomProblems(map, random);
+                       return finish(std::move(map), "point", std::move(problems));
+                     }});
+  }
+  return specs;
+}
+
+nlohmann::json parametricRow(const ProblemSetData& data, const ocp::BoundaryValueProblem& problem,
+                             ocp::BoundaryValueMethod method) {
+  ocp::BoundaryValueOptions options;
+  options.method = method;
+  const ocp::BoundaryValueSolution s =
+      ocp::solveBoundaryValue(*data.vehicle, problem, options, &data.map);
+  nlohmann::json row;
+  row["status"] = ocp::solveStatusName(s.status);
+  row["reason"] = s.reason;
+  row["iterations"] = s.solver.iterations;
+  row["integrations"] = s.solver.integrations;
+  row["time_ms"] = s.total_time_ms;  // the initial guess and the solver
+  row["cost"] = s.verified.ok ? jsonNumber(s.verified.cost) : nlohmann::json(nullptr);
+  row["terminal_error_m"] =
+      s.verified.ok ? jsonNumber(s.verified.terminal_error.head<2>().norm()) : nullptr;
+  row["terminal_heading_error_rad"] =
+      s.verified.ok ? jsonNumber(std::abs(s.verified.terminal_error.z())) : nullptr;
+  return row;
+}
+
+nlohmann::json transcriptionRow(const ProblemSetData& data,
+                                const ocp::BoundaryValueProblem& problem,
+                                ocp::TranscriptionScheme scheme) {
+  const auto started = std::chrono::steady_clock::now();
+  nlohmann::json row;
+  // The same information as the parametric solvers: start and goal, a straight-line guess.
+  const std::optional<ocp::TranscriptionGuess> guess = ocp::guessFromPath(
+      {{problem.start.x, problem.start.y}, {problem.goal.x, problem.goal.y}}, problem);
+  if (!guess) {
+    row["status"] = "error";
+    row["reason"] = "no straight-line guess";
+    return row;
+  }
+  ocp::DirectTranscriptionOptions options;
+  options.scheme = scheme;
+  ocp::TranscriptionSolution solution =
+      ocp::solveDirectTranscription(*data.vehicle, problem, *guess, options);
+  const auto verification_started = std::chrono::steady_clock::now();
+  const ocp::TranscriptionModel model(*data.vehicle, problem, options.model);
+  const ocp::VerifiedTrajectory verified =
+      solution.points.empty() ? ocp::VerifiedTrajectory{}
+                              : ocp::verifyTranscriptionSolution(model, solution, &data.map);
+  const double verification_ms = millisecondsSince(verification_started);
+  ocp::SolveStatus status = solution.result.status;
+  std::string reason = solution.result.reason;
+  const ocp::ConvergenceCriteria criteria;
+  if (status == ocp::SolveStatus::kConverged) {
+    if (!verified.ok) {
+      status = ocp::SolveStatus::kDiverged;
+      reason = "the re-simulation failed: " + verified.message;
+    } else if (verified.terminal_error.head<2>().norm() > criteria.position_m ||
+               std::abs(verified.terminal_error.z()) > criteria.heading_rad) {
+      status = ocp::SolveStatus::kDiverged;
+      reason = "the re-simulated trajectory misses the goal";
+    }
+  }
+  row["status"] = ocp::solveStatusName(status);
+  row["reason"] = reason;
+  row["iterations"] = solution.result.iterations;
+  row["integrations"] = solution.result.integrations;
+  // The guess and the solver, not the re-simulation (as the parametric solvers' total_time_ms).
+  row["time_ms"] = millisecondsSince(started) - verification_ms;
+  row["cost"] = verified.ok ? jsonNumber(verified.cost) : nlohmann::json(nullptr);
+  row["terminal_error_m"] =
+      verified.ok ? jsonNumber(verified.terminal_error.head<2>().norm()) : nullptr;
+  row["terminal_heading_error_rad"] =
+      verified.ok ? jsonNumber(std::abs(verified.terminal_error.z())) : nullptr;
+  return row;
+}
+
+nlohmann::json runCase(const ProblemSetData& data, int index, const std::string& solver) {
+  const ocp::BoundaryValueProblem& problem = data.problems[static_cast<std::size_t>(index)];
+  if (solver == "shooting") {
+    return transcriptionRow(data, problem, ocp::TranscriptionScheme::kMultipleShooting);
+  }
+  if (solver == "collocation") {
+    return transcriptionRow(data, problem, ocp::TranscriptionScheme::kHermiteSimpson);
+  }
+  for (const ocp::BoundaryValueMethod method :
+       {ocp::BoundaryValueMethod::kNewton, ocp::BoundaryValueMethod::kNewtonFd,
+        ocp::BoundaryValueMethod::kIpopt, ocp::BoundaryValueMethod::kCeres}) {
+    if (solver == ocp::boundaryValueMethodName(method)) return parametricRow(data, problem, method);
+  }
+  return {{"status", "error"}, {"reason", "unknown solver " + solver}};
+}
+
+class ConvergenceSuite final : public BenchmarkSuite {
+ public:
+  explicit ConvergenceSuite(const BenchmarkSettings& settings)
+      : specs_(problemSets(settings)), cache_(std::make_shared<Cache>()) {}
+
+  std::string name() const override { return "convergence"; }
+
+  std::vector<BenchmarkCase> cases() const override {
+    std::vector<BenchmarkCase> out;
+    for (std::size_t s = 0; s < specs_.size(); ++s) {
+      for (int i = 0; i < specs_[s].count; ++i) {
+        for (const char* solver : kSolvers) {
+          const std::string set = specs_[s].name;
+          out.push_back({set + "/" + std::to_string(i) + "/" + solver,
+                         [this, s, i, solver = std::string(solver)] {
+                           nlohmann::json row = runCase(data(s), i, solver);
+                           row["set"] = specs_[s].name;
+                           row["problem"] = i;
+                           row["solver"] = solver;
+                           row["vehicle"] = specs_[s].vehicle;
+                           row["formulation"] = formulation(solver);
+                           return row;
+                         }});
+        }
+      }
+    }
+    return out;
+  }
+
+  nlohmann::json summarize(const nlohmann::json& rows) const override {
+    // The best re-simulated cost per problem among the solvers that converged on it.
+    std::map<std::string, double> best;
+    for (const nlohmann::json& row : rows) {
+      if (row.value("status", "") != "converged" || !row["cost"].is_number()) continue;
+      const std::string key = problemKey(row);
+      const double cost = row["cost"].get<double>();
+      auto [it, inserted] = best.emplace(key, cost);
+      if (!inserted) it->second = std::min(it->second, cost);
+    }
+    struct Tally {
+      int runs = 0, converged = 0, best = 0;
+      std::vector<double> iterations, time_ms, cost_ratio;
+    };
+    std::map<std::string, Tally> by_solver;
+    std::map<std::string, std::map<std::string, std::pair<int, int>>> by_set;
+    for (const nlohmann::json& row : rows) {
+      const std::string solver = row.value("solver", "");
+      Tally& t = by_solver[solver];
+      ++t.runs;
+      std::pair<int, int>& set = by_set[row.value("set", "")][solver];
+      ++set.first;
+      if (row["time_ms"].is_number()) t.time_ms.push_back(row["time_ms"].get<double>());
+      if (row.value("status", "") != "converged") continue;
+      ++t.converged;
+      ++set.second;
+      t.iterations.push_back(row["iterations"].get<double>());
+      const double ratio = row["cost"].get<double>() / best.at(problemKey(row));
+      t.cost_ratio.push_back(ratio);
+      if (ratio <= 1.0 + 1e-3) ++t.best;
+    }
+    nlohmann::json solvers = nlohmann::json::object();
+    for (auto& [solver, t] : by_solver) {
+      solvers[solver] = {
+          {"runs", t.runs},
+          {"converged", t.converged},
+          {"success_rate", t.runs > 0 ? static_cast<double>(t.converged) / t.runs : 0.0},
+          {"best_within_0.1_percent", t.best},
+          {"iterations", distributionJson(t.iterations)},
+          {"time_ms", distributionJson(t.time_ms)},
+          {"cost_relative_to_best", distributionJson(t.cost_ratio)}};
+    }
+    nlohmann::json sets_json = nlohmann::json::object();
+    for (const auto& [set, solvers_in_set] : by_set) {
+      for (const auto& [solver, counts] : solvers_in_set) {
+        sets_json[set][solver] = {{"runs", counts.first}, {"converged", counts.second}};
+      }
+    }
+    return {{"problem_formulations", best.size()},
+            {"cost_compared_within",
+             "formulation (parametric: newton_fd, newton, ipopt, ceres; "
+             "transcription: shooting, collocation)"},
+            {"solvers", solvers},
+            {"sets", sets_json}};
+  }
+
+  std::string summaryText(const nlohmann::json& summary) const override {
+    std::ostringstream text;
+    text << "solver       success   iterations (median)   time ms (median, p90)   cost / best of "
+            "its formulation (mean, max)\n";
+    for (const char* solver : kSolvers) {
+      if (!summary["solvers"].contains(solver)) continue;
+      const nlohmann::json& s = summary["solvers"][solver];
+      text << solver << std::string(13 - std::string(solver).size(), ' ') << s["converged"] << "/"
+           << s["runs"] << "    " << s["iterations"].value("median", 0.0) << "    "
+           << s["time_ms"].value("median", 0.0) << ", " << s["time_ms"].value("p90", 0.0) << "    "
+           << s["cost_relative_to_best"].value("mean", 0.0) << ", "
+           << s["cost_relative_to_best"].value("max", 0.0) << '\n';
+    }
+    return text.str();
+  }
+
+ private:
+  struct Cache {
+    std::map<std::size_t, std::unique_ptr<ProblemSetData>> sets;
+  };
+
+  // Costs are compared within a formulation: the parametric solvers hold the speed profile
+  // of the polynomial controls (constant speed on these sets), the transcriptions leave the
+  // speed free between the boundary speeds: different problems, different optima.
+  static std::string formulation(const std::string& solver) {
+    return solver == "shooting" || solver == "collocation" ? "transcription" : "parametric";
+  }
+  static std::string problemKey(const nlohmann::json& row) {
+    return row.value("set", "") + "/" + std::to_string(row.value("problem", -1)) + "/" +
+           formulation(row.value("solver", ""));
+  }
+
+  const ProblemSetData& data(std::size_t s) const {
+    std::unique_ptr<ProblemSetData>& d = cache_->sets[s];
+    if (!d) d = specs_[s].build();
+    return *d;
+  }
+
+  std::vector<ProblemSetSpec> specs_;
+  std::shared_ptr<Cache> cache_;
+};
+
+}  // namespace
+
+std::unique_ptr<BenchmarkSuite> makeConvergenceSuite(const BenchmarkSettings& settings) {
+  return std::make_unique<ConvergenceSuite>(settings);
+}
+
+}  // namespace terratraj::apps

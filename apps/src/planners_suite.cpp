@@ -1,0 +1,253 @@
+// `terratraj bench planners`: the Kobilarov experiments (001_... V.A, figs. 6-7) and the
+// lattice searches on the same problems: first-solution time, cost at 1 s and at the budget,
+// for the kinodynamic PRM; first solution and best cost of ARA*; TAEASL's classes. Every final
+// trajectory is re-checked independently (search::TrajectoryChecker).
+
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <tuple>
+
+#include "terratraj/apps/benchmark_suite.hpp"
+#include "terratraj/apps/json_number.hpp"
+#include "terratraj/search/bang_bang_bound.hpp"
+#include "terratraj/search/benchmark_world.hpp"
+#include "terratraj/search/kinodynamic_prm.hpp"
+#include "terratraj/search/lattice_graph.hpp"
+#include "terratraj/search/lattice_planner.hpp"
+#include "terratraj/search/primitive_generator.hpp"
+#include "terratraj/search/taeasl_planner.hpp"
+#include "terratraj/search/trajectory_checker.hpp"
+
+namespace terratraj::apps {
+namespace {
+
+using terrain::TerrainKind;
+
+// One planning problem of an experiment.
+struct Variant {
+  std::string experiment;  // "environment" (fig. 6) or "expansiveness" (fig. 7)
+  TerrainKind kind;
+  int size;
+  double pitch_max_deg;
+};
+
+std::vector<Variant> variants(bool quick) {
+  std::vector<Variant> out;
+  const std::vector<TerrainKind> kinds =
+      quick ? std::vector<TerrainKind>{TerrainKind::kHills, TerrainKind::kCorridor}
+            : std::vector<TerrainKind>{TerrainKind::kHills, TerrainKind::kCorridor,
+                                       TerrainKind::kObstacles, TerrainKind::kDeadEnd};
+  const std::vector<int> sizes =
+      quick ? std::vector<int>{128} : std::vector<int>{128, 256, 512, 1024};
+  for (const TerrainKind kind : kinds) {
+    for (const int size : sizes) out.push_back({"environment", kind, size, 17.0});
+  }
+  // 256 x 256 maps of growing difficulty (the trapped fraction measures it).
+  const std::vector<std::tuple<TerrainKind, double>> difficulty{
+      {TerrainKind::kFlat, 17.0},      {TerrainKind::kHills, 17.0},
+      {TerrainKind::kHills, 12.0},     {TerrainKind::kHills, 9.0},
+      {TerrainKind::kForest, 17.0},    {TerrainKind::kObstacles, 17.0},
+      {TerrainKind::kCorridor, 17.0},  {TerrainKind::kDeadEnd, 17.0},
+      {TerrainKind::kObstacles, 12.0}, {TerrainKind::kDeadEnd, 12.0}};
+  const std::size_t count = quick ? 2 : difficulty.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    out.push_back({"expansiveness", std::get<0>(difficulty[i]), quick ? 128 : 256,
+                   std::get<1>(difficulty[i])});
+  }
+  return out;
+}
+
+// Cost at `ms` into a run: the last improvement before it (null before the first).
+nlohmann::json costAt(const search::PlanResult& result, double ms) {
+  double cost = std::numeric_limits<double>::infinity();
+  for (const search::CostSample& sample : result.cost_history) {
+    if (sample.time_ms <= ms) cost = sample.cost_s;
+  }
+  return jsonNumber(cost);
+}
+
+nlohmann::json checked(const search::PlanningProblem& problem, const models::Trajectory& t) {
+  search::CheckTolerances tolerances;
+  tolerances.relative = 1e-3;
+  return search::TrajectoryChecker(problem, tolerances).check(t).ok();
+}
+
+nlohmann::json prmRow(const search::BenchmarkWorld& w, std::uint64_t seed, double budget_s) {
+  search::PrmOptions options;
+  options.seed = seed;
+  search::KinodynamicPrm planner(w.problem, options);
+  const search::PlanResult r = planner.solve(search::TerminationCondition::timeLimit(budget_s));
+  nlohmann::json row = {{"status", search::planStatusName(r.status)},
+                        {"first_ms", r.first_solution_ms ? jsonNumber(*r.first_solution_ms)
+                                                         : nlohmann::json(nullptr)},
+                        {"first_cost_s", jsonNumber(r.first_solution_cost_s)},
+                        {"cost_1s", costAt(r, 1000.0)},
+                        {"cost_final_s", jsonNumber(r.best_cost_s)},
+                        {"budget_s", budget_s},
+                        {"trapped_fraction", r.trappedFraction()},
+                        {"nodes", r.nodes}};
+  row["cost_history"] = nlohmann::json::array();
+  for (const search::CostSample& s : r.cost_history) {
+    row["cost_history"].push_back({jsonNumber(s.time_ms), jsonNumber(s.cost_s)});
+  }
+  if (r.status == search::PlanStatus::kSolved) row["check_ok"] = checked(w.problem, r.trajectory);
+  return row;
+}
+
+const search::PrimitiveSet& primitives() {
+  static const search::PrimitiveSet set =
+      search::generatePrimitives(search::LatticeSpec{}, search::benchmarkLimits()).set;
+  return set;
+}
+
+nlohmann::json latticeRows(const search::BenchmarkWorld& w, double budget_s) {
+  const search::LatticeGraph graph(w.problem, primitives());
+  if (graph.error()) return {{"status", "error"}, {"reason", *graph.error()}};
+  nlohmann::json out;
+  const search::LatticePlanner ara(graph);
+  const search::PlanResult a = ara.solve(search::TerminationCondition::timeLimit(budget_s));
+  out["ara"] = {{"status", search::planStatusName(a.status)},
+                {"first_ms",
+                 a.first_solution_ms ? jsonNumber(*a.first_solution_ms) : nlohmann::json(nullptr)},
+                {"first_cost_s", jsonNumber(a.first_solution_cost_s)},
+                {"best_cost_s", jsonNumber(a.best_cost_s)},
+                {"planning_ms", a.planning_time_ms},
+                {"expansions", a.search.expansions}};
+  if (a.status == search::PlanStatus::kSolved)
+    out["ara"]["check_ok"] = checked(w.problem, a.trajectory);
+  const search::TaeaslPlanner taeasl(graph);
+  const search::PlanResult t = taeasl.solve(search::TerminationCondition::timeLimit(budget_s));
+  nlohmann::json classes = nlohmann::json::array();
+  bool all_ok = true;
+  for (const search::PlanSolution& s : t.solutions) {
+    classes.push_back({{"cost_s", jsonNumber(s.cost_s)}, {"found_ms", jsonNumber(s.found_ms)}});
+    all_ok = all_ok && checked(w.problem, s.trajectory).get<bool>();
+  }
+  out["taeasl"] = {{"status", search::planStatusName(t.status)},
+                   {"classes", classes},
+                   {"planning_ms", t.planning_time_ms},
+                   {"check_ok", all_ok}};
+  return out;
+}
+
+// A median as a short column ("-" when there is none).
+std::string brief(const nlohmann::json& medians, const char* key) {
+  std::ostringstream text;
+  text << std::setprecision(4);
+  if (medians.contains(key) && medians[key].is_number()) {
+    text << medians[key].get<double>();
+  } else {
+    text << "-";
+  }
+  std::string s = text.str();
+  return s + std::string(s.size() < 12 ? 13 - s.size() : 1, ' ');
+}
+
+class PlannersSuite final : public BenchmarkSuite {
+ public:
+  explicit PlannersSuite(const BenchmarkSettings& settings) : settings_(settings) {}
+
+  std::string name() const override { return "planners"; }
+
+  std::vector<BenchmarkCase> cases() const override {
+    std::vector<BenchmarkCase> out;
+    for (const Variant& v : variants(settings_.quick)) {
+      for (int k = 0; k < settings_.seeds; ++k) {
+        const std::uint64_t seed = settings_.seed + static_cast<std::uint64_t>(k);
+        std::ostringstream id;
+        id << v.experiment << "/" << terrain::terrainKindName(v.kind) << "/" << v.size << "/pitch"
+           << v.pitch_max_deg << "/seed" << seed;
+        out.push_back({id.str(), [this, v, seed] { return run(v, seed); }});
+      }
+    }
+    return out;
+  }
+
+  nlohmann::json summarize(const nlohmann::json& rows) const override {
+    // Per experiment and variant (kind, size, pitch): medians over the seeds.
+    std::map<std::string, std::map<std::string, std::vector<double>>> groups;
+    for (const nlohmann::json& row : rows) {
+      if (!row.contains("prm")) continue;
+      std::ostringstream key;
+      key << row["experiment"].get<std::string>() << "/" << row["kind"].get<std::string>() << "/"
+          << row["size"] << "/pitch" << row["pitch_max_deg"];
+      auto& g = groups[key.str()];
+      const nlohmann::json& prm = row["prm"];
+      auto push = [&g](const char* name, const nlohmann::json& value) {
+        if (value.is_number()) g[name].push_back(value.get<double>());
+      };
+      push("prm_first_ms", prm["first_ms"]);
+      push("prm_first_cost_s", prm["first_cost_s"]);
+      push("prm_cost_1s", prm["cost_1s"]);
+      push("prm_cost_final_s", prm["cost_final_s"]);
+      push("trapped_fraction", prm["trapped_fraction"]);
+      push("lower_bound_s", row["lower_bound_s"]);
+      if (row.contains("lattice") && row["lattice"].contains("ara")) {
+        push("ara_first_ms", row["lattice"]["ara"]["first_ms"]);
+        push("ara_best_cost_s", row["lattice"]["ara"]["best_cost_s"]);
+      }
+      if (row.contains("lattice") && row["lattice"].contains("taeasl")) {
+        g["taeasl_classes"].push_back(
+            static_cast<double>(row["lattice"]["taeasl"]["classes"].size()));
+      }
+    }
+    nlohmann::json out = nlohmann::json::object();
+    for (auto& [key, values] : groups) {
+      for (auto& [name, v] : values) {
+        const nlohmann::json d = distributionJson(v);
+        out[key][name] = d.contains("median") ? d["median"] : nlohmann::json(nullptr);
+      }
+    }
+    return {{"median_by_variant", out}};
+  }
+
+  std::string summaryText(const nlohmann::json& summary) const override {
+    std::ostringstream text;
+    text << "variant (medians)                        PRM first ms cost 1 s [s] final [s]    "
+            "ARA* first ms ARA* cost [s] trapped\n";
+    for (const auto& [key, m] : summary["median_by_variant"].items()) {
+      text << key << std::string(key.size() < 40 ? 41 - key.size() : 1, ' ')
+           << brief(m, "prm_first_ms") << brief(m, "prm_cost_1s") << brief(m, "prm_cost_final_s")
+           << brief(m, "ara_first_ms") << brief(m, "ara_best_cost_s")
+           << brief(m, "trapped_fraction") << '\n';
+    }
+    return text.str();
+  }
+
+ private:
+  nlohmann::json run(const Variant& v, std::uint64_t seed) const {
+    const double budget =
+        settings_.quick ? std::min(settings_.time_limit_s, 0.5) : settings_.time_limit_s;
+    nlohmann::json row = {{"experiment", v.experiment},
+                          {"kind", terrain::terrainKindName(v.kind)},
+                          {"size", v.size},
+                          {"pitch_max_deg", v.pitch_max_deg},
+                          {"seed", seed}};
+    search::BenchmarkWorld w(search::generateBenchmarkMap(v.kind, v.size, seed),
+                             search::BenchmarkVehicle::kPoint,
+                             search::benchmarkLimits(v.pitch_max_deg));
+    const auto [start, goal] = terrain::standardStartGoal(w.map.geometry());
+    if (!w.place(start, goal)) {
+      row["status"] = "no start / goal on moderate ground";
+      return row;
+    }
+    row["status"] = "done";
+    row["distance_m"] = w.distance();
+    row["lower_bound_s"] = w.lowerBoundTime();
+    row["prm"] = prmRow(w, seed, budget);
+    row["lattice"] = latticeRows(w, std::min(budget, 1.0));
+    return row;
+  }
+
+  BenchmarkSettings settings_;
+};
+
+}  // namespace
+
+std::unique_ptr<BenchmarkSuite> makePlannersSuite(const BenchmarkSettings& settings) {
+  return std::make_unique<PlannersSuite>(settings);
+}
+
+}  // namespace terratraj::apps

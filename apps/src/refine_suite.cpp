@@ -1,0 +1,194 @@
+// `terratraj bench refine`: the planners' candidates against their refinements (issue 8's set)
+// on generated hills, corridor and forest maps. Every refinement is re-checked here,
+// independently of the refiner: homotopy class recomputed over the same frames, limits by
+// search::TrajectoryChecker.
+
+#include <chrono>
+#include <sstream>
+
+#include "terratraj/apps/benchmark_suite.hpp"
+#include "terratraj/apps/json_number.hpp"
+#include "terratraj/search/benchmark_world.hpp"
+#include "terratraj/search/candidate_refiner.hpp"
+#include "terratraj/search/kinodynamic_prm.hpp"
+#include "terratraj/search/lattice_graph.hpp"
+#include "terratraj/search/primitive_generator.hpp"
+#include "terratraj/search/taeasl_planner.hpp"
+#include "terratraj/search/trajectory_checker.hpp"
+#include "terratraj/terrain/obstacle_clusters.hpp"
+
+namespace terratraj::apps {
+namespace {
+
+const char* const kPlanners[] = {"prm_first", "prm_1s", "taeasl"};
+const std::pair<const char*, terrain::TerrainKind> kKinds[] = {
+    {"hills", terrain::TerrainKind::kHills},
+    {"corridor", terrain::TerrainKind::kCorridor},
+    {"forest", terrain::TerrainKind::kForest}};
+constexpr double kPitchMaxDeg = 25.0;
+
+double duration(const models::Trajectory& t) { return t.samples.back().t - t.samples.front().t; }
+
+std::vector<models::Trajectory> plan(const std::string& planner,
+                                     const search::PlanningProblem& problem, std::uint64_t seed,
+                                     double budget_s) {
+  std::vector<models::Trajectory> out;
+  if (planner == "taeasl") {
+    static const search::PrimitiveSet primitives =
+        search::generatePrimitives(search::LatticeSpec{}, search::benchmarkLimits(kPitchMaxDeg))
+            .set;
+    const search::LatticeGraph graph(problem, primitives);
+    const search::TaeaslPlanner taeasl(graph);
+    const search::PlanResult r = taeasl.solve(search::TerminationCondition::timeLimit(budget_s));
+    for (const search::PlanSolution& s : r.solutions) out.push_back(s.trajectory);
+    return out;
+  }
+  search::PrmOptions options;
+  options.seed = seed;
+  search::KinodynamicPrm prm(problem, options);
+  search::TerminationCondition condition = search::TerminationCondition::timeLimit(budget_s);
+  if (planner == "prm_first") condition.stopAtFirstSolution();
+  const search::PlanResult r = prm.solve(condition);
+  if (r.status == search::PlanStatus::kSolved) out.push_back(r.trajectory);
+  return out;
+}
+
+nlohmann::json refineOne(const search::BenchmarkWorld& w, const search::CandidateRefiner& refiner,
+                         const search::ReferenceFrames& frames,
+                         const models::Trajectory& candidate) {
+  const auto started = std::chrono::steady_clock::now();
+  const search::RefinementResult r = refiner.refine(candidate);
+  nlohmann::json out;
+  out["refine_ms"] = millisecondsSince(started);
+  out["status"] = ocp::solveStatusName(r.status);
+  out["reason"] = r.reason;
+  out["method"] = search::refineMethodName(r.method);
+  out["candidate_s"] = duration(candidate);
+  out["lower_bound_s"] = w.lowerBoundTime();
+  if (r.status != ocp::SolveStatus::kConverged) return out;
+  out["refined_s"] = r.verified.final_time;
+  out["ratio"] = r.verified.final_time / duration(candidate);
+  std::vector<Eigen::Vector2d> before, after;
+  for (const auto& s : candidate.samples) before.emplace_back(s.x, s.y);
+  for (const auto& s : r.verified.trajectory.samples) after.emplace_back(s.x, s.y);
+  out["class_kept"] = frames.signatureOf(before) == frames.signatureOf(after);
+  search::CheckTolerances tolerances;
+  tolerances.relative = 1e-3;
+  const search::CheckReport check =
+      search::TrajectoryChecker(w.problem, tolerances).check(r.verified.trajectory);
+  out["check_ok"] = check.ok();
+  nlohmann::json violations = nlohmann::json::array();
+  for (const search::CheckViolation& v : check.violations) {
+    violations.push_back({{"limit", v.limit}, {"amount", jsonNumber(v.amount)}});
+  }
+  out["violations"] = violations;
+  return out;
+}
+
+class RefineSuite final : public BenchmarkSuite {
+ public:
+  explicit RefineSuite(const BenchmarkSettings& settings) : settings_(settings) {}
+
+  std::string name() const override { return "refine"; }
+
+  std::vector<BenchmarkCase> cases() const override {
+    std::vector<BenchmarkCase> out;
+    for (const char* planner : kPlanners) {
+      for (const auto& [kind_name, kind] : kKinds) {
+        for (int k = 0; k < settings_.seeds; ++k) {
+          const std::uint64_t seed = settings_.seed + static_cast<std::uint64_t>(k);
+          const std::string id =
+              std::string(planner) + "/" + kind_name + "/seed" + std::to_string(seed);
+          out.push_back(
+              {id, [this, planner = std::string(planner), kind_name = std::string(kind_name),
+                    kind = kind, seed] { return run(planner, kind_name, kind, seed); }});
+        }
+      }
+    }
+    return out;
+  }
+
+  nlohmann::json summarize(const nlohmann::json& rows) const override {
+    std::map<std::string, std::vector<double>> ratios;
+    std::vector<double> all, bound;
+    int candidates = 0, converged = 0, kept = 0, checked = 0;
+    for (const nlohmann::json& row : rows) {
+      for (const nlohmann::json& c : row.value("candidates", nlohmann::json::array())) {
+        ++candidates;
+        if (c.value("status", "") != "converged") continue;
+        ++converged;
+        kept += c.value("class_kept", false);
+        checked += c.value("check_ok", false);
+        ratios[row.value("planner", "")].push_back(c["ratio"].get<double>());
+        all.push_back(c["ratio"].get<double>());
+        bound.push_back(c["refined_s"].get<double>() / c["lower_bound_s"].get<double>());
+      }
+    }
+    nlohmann::json by_planner = nlohmann::json::object();
+    for (auto& [planner, values] : ratios) by_planner[planner] = distributionJson(values);
+    return {{"candidates", candidates},
+            {"converged", converged},
+            {"class_kept", kept},
+            {"check_ok", checked},
+            {"refined_over_candidate", distributionJson(all)},
+            {"refined_over_lower_bound", distributionJson(bound)},
+            {"by_planner", by_planner}};
+  }
+
+  std::string summaryText(const nlohmann::json& summary) const override {
+    std::ostringstream text;
+    text << "refinements: " << summary["converged"] << " of " << summary["candidates"]
+         << " converged, " << summary["class_kept"] << " kept their class, " << summary["check_ok"]
+         << " pass the independent check\n"
+         << "refined / candidate time: mean "
+         << summary["refined_over_candidate"].value("mean", 0.0) << '\n';
+    for (const auto& [planner, d] : summary["by_planner"].items()) {
+      text << "  " << planner << ": mean " << d.value("mean", 0.0) << " (" << d["count"]
+           << " refinements)\n";
+    }
+    return text.str();
+  }
+
+ private:
+  nlohmann::json run(const std::string& planner, const std::string& kind_name,
+                     terrain::TerrainKind kind, std::uint64_t seed) const {
+    const int size = settings_.quick ? 96 : 256;
+    const double budget = settings_.quick ? 0.3 : 1.0;
+    nlohmann::json row = {{"planner", planner}, {"kind", kind_name},  {"seed", seed},
+                          {"map_cells", size},  {"vehicle", "point"}, {"budget_s", budget}};
+    search::BenchmarkWorld w(search::generateBenchmarkMap(kind, size, seed),
+                             search::BenchmarkVehicle::kPoint,
+                             search::benchmarkLimits(kPitchMaxDeg));
+    const auto [start, goal] = terrain::standardStartGoal(w.map.geometry());
+    if (!w.place(start, goal)) {
+      row["status"] = "no start / goal on moderate ground";
+      return row;
+    }
+    ocp::BoundaryValueProblem bvp;
+    bvp.start = {w.problem.start.position.x(), w.problem.start.position.y(), 0.0, 0.0, 0.0};
+    bvp.goal = {w.problem.goal.position.x(), w.problem.goal.position.y(), 0.0, 0.0, 0.0};
+    bvp.limits = w.problem.limits;
+    search::ReferenceFrameOptions frame_options;
+    frame_options.anchor = {0.5 * w.map.geometry().width(), 0.5 * w.map.geometry().height()};
+    const search::ReferenceFrames frames =
+        search::ReferenceFrames::build(w.map, terrain::findObstacleClusters(w.map), frame_options);
+    const search::CandidateRefiner refiner(w.problem, bvp, frames);
+    const std::vector<models::Trajectory> found = plan(planner, w.problem, seed, budget);
+    row["status"] = found.empty() ? "no candidate" : "done";
+    row["candidates"] = nlohmann::json::array();
+    for (const models::Trajectory& candidate : found) {
+      row["candidates"].push_back(refineOne(w, refiner, frames, candidate));
+    }
+    return row;
+  }
+
+  BenchmarkSettings settings_;
+};
+
+}  // namespace
+
+std::unique_ptr<BenchmarkSuite> makeRefineSuite(const BenchmarkSettings& settings) {
+  return std::make_unique<RefineSuite>(settings);
+}
+
+}  // namespace terratraj::apps
