@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libgdal-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev
   python3 python3-numpy python3-matplotlib
+  libompl-dev
 )
 
 missing=()

@@ -11,6 +11,7 @@
 
 #include "terratraj/apps/benchmark_suite.hpp"
 #include "terratraj/apps/json_number.hpp"
+#include "terratraj/apps/ompl_peer.hpp"
 #include "terratraj/search/bang_bang_bound.hpp"
 #include "terratraj/search/benchmark_world.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
@@ -93,6 +94,27 @@ nlohmann::json prmRow(const search::BenchmarkWorld& w, std::uint64_t seed, doubl
     row["cost_history"].push_back({jsonNumber(s.time_ms), jsonNumber(s.cost_s)});
   }
   if (r.status == search::PlanStatus::kSolved) row["check_ok"] = checked(w.problem, r.trajectory);
+  return row;
+}
+
+// An OMPL peer on the same problem, its solution re-checked like the PRM's. cost_1s comes from
+// OMPL's control durations; cost_final_s is the re-integrated trajectory's duration.
+nlohmann::json omplRow(const search::BenchmarkWorld& w, OmplPlanner planner, std::uint64_t seed,
+                       double budget_s) {
+  const OmplRun r = runOmplPeer(w.problem, planner, budget_s, seed);
+  nlohmann::json row = {
+      {"status", r.status},
+      {"solved", r.solved},
+      {"first_ms", r.first_ms ? jsonNumber(*r.first_ms) : nlohmann::json(nullptr)},
+      {"planning_ms", r.planning_ms},
+      {"budget_s", budget_s}};
+  double at_1s = std::numeric_limits<double>::infinity();
+  for (const auto& [ms, cost] : r.cost_history) {
+    if (ms <= 1000.0) at_1s = cost;
+  }
+  row["cost_1s"] = jsonNumber(at_1s);
+  row["cost_final_s"] = r.solved ? jsonNumber(r.cost_s) : nlohmann::json(nullptr);
+  if (r.solved) row["check_ok"] = checked(w.problem, r.trajectory);
   return row;
 }
 
@@ -188,19 +210,52 @@ class PlannersSuite final : public BenchmarkSuite {
         push("ara_first_ms", row["lattice"]["ara"]["first_ms"]);
         push("ara_best_cost_s", row["lattice"]["ara"]["best_cost_s"]);
       }
+      for (const char* peer : {"ompl_rrt", "ompl_sst"}) {
+        if (!row.contains(peer)) continue;
+        push((std::string(peer) + "_first_ms").c_str(), row[peer]["first_ms"]);
+        push((std::string(peer) + "_cost_1s").c_str(), row[peer]["cost_1s"]);
+        push((std::string(peer) + "_cost_final_s").c_str(), row[peer]["cost_final_s"]);
+        g[std::string(peer) + "_solved"].push_back(row[peer]["solved"].get<bool>() ? 1.0 : 0.0);
+      }
       if (row.contains("lattice") && row["lattice"].contains("taeasl")) {
         g["taeasl_classes"].push_back(
             static_cast<double>(row["lattice"]["taeasl"]["classes"].size()));
       }
     }
     nlohmann::json out = nlohmann::json::object();
+    // Peers against the PRM, per variant (medians) and over all variants (geometric means):
+    // time to the first solution, and cost at equal time (1 s, and the budget).
+    std::map<std::string, std::vector<double>> ratios;
     for (auto& [key, values] : groups) {
       for (auto& [name, v] : values) {
         const nlohmann::json d = distributionJson(v);
-        out[key][name] = d.contains("median") ? d["median"] : nlohmann::json(nullptr);
+        const bool fraction = name.size() > 7 && name.compare(name.size() - 7, 7, "_solved") == 0;
+        out[key][name] =
+            d.contains("median") ? d[fraction ? "mean" : "median"] : nlohmann::json(nullptr);
       }
+      const nlohmann::json& m = out[key];
+      const auto ratio = [&m, &ratios](const std::string& name, const std::string& peer,
+                                       const std::string& prm) {
+        if (m.contains(peer) && m.contains(prm) && m[peer].is_number() && m[prm].is_number() &&
+            m[prm].get<double>() > 0.0) {
+          ratios[name].push_back(m[peer].get<double>() / m[prm].get<double>());
+        }
+      };
+      for (const std::string peer : {"ompl_rrt", "ompl_sst", "ara"}) {
+        ratio(peer + "_first_ms_over_prm", peer + "_first_ms", "prm_first_ms");
+      }
+      ratio("ompl_sst_cost_1s_over_prm", "ompl_sst_cost_1s", "prm_cost_1s");
+      ratio("ompl_sst_cost_final_over_prm", "ompl_sst_cost_final_s", "prm_cost_final_s");
+      ratio("ompl_rrt_cost_over_prm_first", "ompl_rrt_cost_final_s", "prm_first_cost_s");
     }
-    return {{"median_by_variant", out}};
+    nlohmann::json peers = nlohmann::json::object();
+    for (const auto& [name, v] : ratios) {
+      double log_sum = 0.0;
+      for (const double r : v) log_sum += std::log(r);
+      peers[name] = {{"geometric_mean", std::exp(log_sum / static_cast<double>(v.size()))},
+                     {"variants", v.size()}};
+    }
+    return {{"median_by_variant", out}, {"peers_over_prm", peers}};
   }
 
   std::string summaryText(const nlohmann::json& summary) const override {
@@ -212,6 +267,11 @@ class PlannersSuite final : public BenchmarkSuite {
            << brief(m, "prm_first_ms") << brief(m, "prm_cost_1s") << brief(m, "prm_cost_final_s")
            << brief(m, "ara_first_ms") << brief(m, "ara_best_cost_s")
            << brief(m, "trapped_fraction") << '\n';
+    }
+    text << "peers / PRM (geometric mean over variants):\n";
+    for (const auto& [name, r] : summary["peers_over_prm"].items()) {
+      text << "  " << name << " " << r["geometric_mean"].get<double>() << " (" << r["variants"]
+           << " variants)\n";
     }
     return text.str();
   }
@@ -238,6 +298,9 @@ class PlannersSuite final : public BenchmarkSuite {
     row["lower_bound_s"] = w.lowerBoundTime();
     row["prm"] = prmRow(w, seed, budget);
     row["lattice"] = latticeRows(w, std::min(budget, 1.0));
+    for (const OmplPlanner peer : {OmplPlanner::kRrt, OmplPlanner::kSst}) {
+      row[omplPlannerName(peer)] = omplRow(w, peer, seed, budget);
+    }
     return row;
   }
 
