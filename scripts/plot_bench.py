@@ -14,7 +14,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-SOLVERS = ["newton_fd", "newton", "ipopt", "ceres", "shooting", "collocation"]
+SOLVERS = ["newton_fd", "newton", "ipopt", "ceres", "shooting", "collocation",
+           "collocation_refined"]
 
 
 def profile(ax, rows, measure, title):
@@ -24,7 +25,9 @@ def profile(ax, rows, measure, title):
     for r in rows:
         key = (r["set"], r["problem"])
         ok = r.get("status") == "converged" and isinstance(r.get(measure), (int, float))
-        problems.setdefault(key, {})[r["solver"]] = r[measure] if ok else math.inf
+        # Counts start at 1 (a solver that converged at its initial guess used 0 iterations).
+        value = max(r[measure], 1) if ok and measure == "iterations" else r.get(measure)
+        problems.setdefault(key, {})[r["solver"]] = value if ok else math.inf
     taus = [2 ** (k / 8.0) for k in range(0, 8 * 12 + 1)]
     for solver in SOLVERS:
         ratios = []
@@ -132,7 +135,49 @@ def planners(result, png):
     fig.suptitle(title(result))
     fig.tight_layout()
     fig.savefig(png, dpi=110)
-    return [png]
+    return [png, peers(result, rows, png)]
+
+
+def peers(result, rows, png):
+    """OMPL's RRT and SST against the PRM on the same problems: time to the first solution,
+    and cost (RRT: its only solution against the PRM's first; SST: at the budget against the
+    PRM's at the budget)."""
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5.5))
+    for peer, marker in [("ompl_rrt", "o"), ("ompl_sst", "s")]:
+        xs, ys, cx, cy = [], [], [], []
+        for r in rows:
+            p = r.get(peer, {})
+            if p.get("first_ms") is not None and r["prm"]["first_ms"] is not None:
+                xs.append(r["prm"]["first_ms"])
+                ys.append(p["first_ms"])
+            if p.get("cost_final_s") is not None:
+                prm_cost = r["prm"]["first_cost_s"] if peer == "ompl_rrt" else r["prm"]["cost_final_s"]
+                if prm_cost is not None:
+                    cx.append(prm_cost)
+                    cy.append(p["cost_final_s"])
+        axes[0].scatter(xs, ys, marker=marker, label=peer)
+        axes[1].scatter(cx, cy, marker=marker,
+                        label=peer + (" vs PRM first" if peer == "ompl_rrt" else " vs PRM at budget"))
+    for ax in axes:
+        lo, hi = ax.get_xlim()
+        lo2, hi2 = ax.get_ylim()
+        a, b = min(lo, lo2), max(hi, hi2)
+        ax.plot([a, b], [a, b], "k-", lw=0.8, label="equal")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[0].set_xscale("log")
+    axes[0].set_yscale("log")
+    axes[0].set_xlabel("PRM first solution [ms]")
+    axes[0].set_ylabel("OMPL first solution [ms]")
+    axes[0].set_title("time to the first solution (above the line: the PRM is faster)")
+    axes[1].set_xlabel("PRM cost [s]")
+    axes[1].set_ylabel("OMPL cost [s] (re-integrated)")
+    axes[1].set_title("trajectory duration (above the line: the PRM is better)")
+    fig.suptitle(title(result))
+    fig.tight_layout()
+    out = png[:-4] + "-peers.png" if png.endswith(".png") else png + "-peers.png"
+    fig.savefig(out, dpi=110)
+    return out
 
 
 def refine(result, png):
@@ -166,9 +211,9 @@ def tables(result, png):
     summary = result["summary"]["by_tables"]
     kinds = [k for k in ["none", "physics", "data"] if k in summary]
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
-    axes[0].bar(kinds, [summary[k]["traversal_time_s"].get("mean", 0.0) for k in kinds])
+    axes[0].bar(kinds, [summary[k].get("traversal_time_s", {}).get("mean", 0.0) for k in kinds])
     axes[0].set_ylabel("traversal time [s] (mean)")
-    axes[1].bar(kinds, [100 * summary[k]["violating_data_tables"].get("mean", 0.0)
+    axes[1].bar(kinds, [100 * summary[k].get("violating_data_tables", {}).get("mean", 0.0)
                         for k in kinds])
     axes[1].set_ylabel("states faster than the data-driven tables [%] (mean)")
     for ax in axes:

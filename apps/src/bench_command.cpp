@@ -15,6 +15,7 @@
 #include <sstream>
 #include <thread>
 
+#include "terratraj/apps/build_commit.hpp"
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/terrain/input_error.hpp"
@@ -27,17 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kResultFormat = 1;
-
-std::string commandOutput(const std::string& command) {
-  std::string text;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return text;
-  char buffer[256];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) text += buffer;
-  pclose(pipe);
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
-  return text;
-}
 
 std::vector<int> parseCaseList(const std::string& text, int total) {
   std::vector<int> out;
@@ -280,10 +270,7 @@ nlohmann::json benchMachineJson() {
   gethostname(host, sizeof host - 1);
   utsname system{};
   uname(&system);
-  const std::string source = TERRATRAJ_SOURCE_DIR;
-  const std::string commit = commandOutput("git -C '" + source + "' rev-parse HEAD 2>/dev/null");
-  const std::string dirty =
-      commandOutput("git -C '" + source + "' status --porcelain --untracked-files=no 2>/dev/null");
+  const std::string commit = detail::kBuildCommit;
   std::string cpu;
   std::ifstream cpuinfo("/proc/cpuinfo");
   for (std::string line; std::getline(cpuinfo, line);) {
@@ -298,7 +285,7 @@ nlohmann::json benchMachineJson() {
           {"cores", std::thread::hardware_concurrency()},
           {"compiler", __VERSION__},
           {"commit", commit.empty() ? nlohmann::json(nullptr) : nlohmann::json(commit)},
-          {"uncommitted_changes", !dirty.empty()}};
+          {"uncommitted_changes", detail::kBuildHadUncommittedChanges}};
 }
 
 int runBench(const BenchOptions& options, CommandContext& context) {

@@ -30,7 +30,11 @@ namespace {
 
 namespace sets = ocp::problem_sets;
 
-const char* const kSolvers[] = {"newton_fd", "newton", "ipopt", "ceres", "shooting", "collocation"};
+// collocation_refined: Hermite-Simpson with up to 3 rounds of mesh refinement (intervals whose
+// local error exceeds 1e-4 split): the same formulation at a setting that trades time for the
+// discretisation error the re-simulation sees.
+const char* const kSolvers[] = {
+    "newton_fd", "newton", "ipopt", "ceres", "shooting", "collocation", "collocation_refined"};
 
 // A problem set: its map, vehicle and problems, built on first use (one per process).
 struct ProblemSetData {
@@ -151,7 +155,7 @@ nlohmann::json parametricRow(const ProblemSetData& data, const ocp::BoundaryValu
 
 nlohmann::json transcriptionRow(const ProblemSetData& data,
                                 const ocp::BoundaryValueProblem& problem,
-                                ocp::TranscriptionScheme scheme) {
+                                const ocp::DirectTranscriptionOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   nlohmann::json row;
   // The same information as the parametric solvers: start and goal, a straight-line guess.
@@ -162,8 +166,6 @@ nlohmann::json transcriptionRow(const ProblemSetData& data,
     row["reason"] = "no straight-line guess";
     return row;
   }
-  ocp::DirectTranscriptionOptions options;
-  options.scheme = scheme;
   ocp::TranscriptionSolution solution =
       ocp::solveDirectTranscription(*data.vehicle, problem, *guess, options);
   const auto verification_started = std::chrono::steady_clock::now();
@@ -201,11 +203,16 @@ nlohmann::json transcriptionRow(const ProblemSetData& data,
 
 nlohmann::json runCase(const ProblemSetData& data, int index, const std::string& solver) {
   const ocp::BoundaryValueProblem& problem = data.problems[static_cast<std::size_t>(index)];
+  ocp::DirectTranscriptionOptions options;
   if (solver == "shooting") {
-    return transcriptionRow(data, problem, ocp::TranscriptionScheme::kMultipleShooting);
+    options.scheme = ocp::TranscriptionScheme::kMultipleShooting;
+    return transcriptionRow(data, problem, options);
   }
-  if (solver == "collocation") {
-    return transcriptionRow(data, problem, ocp::TranscriptionScheme::kHermiteSimpson);
+  if (solver == "collocation") return transcriptionRow(data, problem, options);
+  if (solver == "collocation_refined") {
+    options.refinement.max_rounds = 3;
+    options.refinement.tolerance = 1e-4;
+    return transcriptionRow(data, problem, options);
   }
   for (const ocp::BoundaryValueMethod method :
        {ocp::BoundaryValueMethod::kNewton, ocp::BoundaryValueMethod::kNewtonFd,
@@ -254,9 +261,18 @@ class ConvergenceSuite final : public BenchmarkSuite {
       auto [it, inserted] = best.emplace(key, cost);
       if (!inserted) it->second = std::min(it->second, cost);
     }
+    // The paper's solver, newton_fd, is the baseline: each solver's time over its time on the
+    // same problem, where both converged.
+    std::map<std::string, double> baseline_ms;
+    for (const nlohmann::json& row : rows) {
+      if (row.value("solver", "") == "newton_fd" && row.value("status", "") == "converged") {
+        baseline_ms[row.value("set", "") + "/" + std::to_string(row.value("problem", -1))] =
+            row["time_ms"].get<double>();
+      }
+    }
     struct Tally {
       int runs = 0, converged = 0, best = 0;
-      std::vector<double> iterations, time_ms, cost_ratio;
+      std::vector<double> iterations, time_ms, cost_ratio, over_baseline;
     };
     std::map<std::string, Tally> by_solver;
     std::map<std::string, std::map<std::string, std::pair<int, int>>> by_set;
@@ -274,6 +290,11 @@ class ConvergenceSuite final : public BenchmarkSuite {
       const double ratio = row["cost"].get<double>() / best.at(problemKey(row));
       t.cost_ratio.push_back(ratio);
       if (ratio <= 1.0 + 1e-3) ++t.best;
+      const auto base =
+          baseline_ms.find(row.value("set", "") + "/" + std::to_string(row.value("problem", -1)));
+      if (base != baseline_ms.end() && base->second > 0.0) {
+        t.over_baseline.push_back(row["time_ms"].get<double>() / base->second);
+      }
     }
     nlohmann::json solvers = nlohmann::json::object();
     for (auto& [solver, t] : by_solver) {
@@ -284,7 +305,8 @@ class ConvergenceSuite final : public BenchmarkSuite {
           {"best_within_0.1_percent", t.best},
           {"iterations", distributionJson(t.iterations)},
           {"time_ms", distributionJson(t.time_ms)},
-          {"cost_relative_to_best", distributionJson(t.cost_ratio)}};
+          {"cost_relative_to_best", distributionJson(t.cost_ratio)},
+          {"time_over_newton_fd", distributionJson(t.over_baseline)}};
     }
     nlohmann::json sets_json = nlohmann::json::object();
     for (const auto& [set, solvers_in_set] : by_set) {
@@ -302,16 +324,19 @@ class ConvergenceSuite final : public BenchmarkSuite {
 
   std::string summaryText(const nlohmann::json& summary) const override {
     std::ostringstream text;
-    text << "solver       success   iterations (median)   time ms (median, p90)   cost / best of "
-            "its formulation (mean, max)\n";
+    text << "solver              success   iterations (median)   time ms (median, p90)   cost / "
+            "best of "
+            "its formulation (mean, max)   time / newton_fd (median)\n";
     for (const char* solver : kSolvers) {
       if (!summary["solvers"].contains(solver)) continue;
       const nlohmann::json& s = summary["solvers"][solver];
-      text << solver << std::string(13 - std::string(solver).size(), ' ') << s["converged"] << "/"
+      const std::size_t width = std::string(solver).size();
+      text << solver << std::string(width < 20 ? 20 - width : 1, ' ') << s["converged"] << "/"
            << s["runs"] << "    " << s["iterations"].value("median", 0.0) << "    "
            << s["time_ms"].value("median", 0.0) << ", " << s["time_ms"].value("p90", 0.0) << "    "
            << s["cost_relative_to_best"].value("mean", 0.0) << ", "
-           << s["cost_relative_to_best"].value("max", 0.0) << '\n';
+           << s["cost_relative_to_best"].value("max", 0.0) << "    "
+           << s["time_over_newton_fd"].value("median", 0.0) << '\n';
     }
     return text.str();
   }
@@ -325,7 +350,8 @@ class ConvergenceSuite final : public BenchmarkSuite {
   // of the polynomial controls (constant speed on these sets), the transcriptions leave the
   // speed free between the boundary speeds: different problems, different optima.
   static std::string formulation(const std::string& solver) {
-    return solver == "shooting" || solver == "collocation" ? "transcription" : "parametric";
+    return solver == "shooting" || solver.rfind("collocation", 0) == 0 ? "transcription"
+                                                                       : "parametric";
   }
   static std::string problemKey(const nlohmann::json& row) {
     return row.value("set", "") + "/" + std::to_string(row.value("problem", -1)) + "/" +

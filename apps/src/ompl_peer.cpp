@@ -289,12 +289,28 @@ class GoalBiasedControlSampler final : public oc::ControlSampler {
 };
 
 // The problem's goal region; goal samples are the goal pose at the goal speed.
+// Every state the planner tests against the goal passes here: the first one inside the region
+// and each one reached sooner than the best so far are recorded (wall time, the state's time
+// coordinate = the trajectory's duration). OMPL's SST adds its solution path only when solve()
+// returns, so this is how its first-solution time and cost curve are measured.
+struct SolutionRecorder {
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  std::vector<std::pair<double, double>> improvements;  // (ms, duration [s])
+};
+
 class GoalRegionAdapter final : public ob::GoalSampleableRegion {
  public:
-  GoalRegionAdapter(const ob::SpaceInformationPtr& si, const search::GoalRegion& goal)
-      : ob::GoalSampleableRegion(si), goal_(goal) {
+  GoalRegionAdapter(const ob::SpaceInformationPtr& si, const search::GoalRegion& goal,
+                    SolutionRecorder& recorder)
+      : ob::GoalSampleableRegion(si), goal_(goal), recorder_(recorder) {
     setThreshold(goal.position_tolerance);
   }
+  bool isSatisfied(const ob::State* state, double* distance) const override {
+    const bool inside = ob::GoalSampleableRegion::isSatisfied(state, distance);
+    if (inside) record(state);
+    return inside;
+  }
+  bool isSatisfied(const ob::State* state) const override { return isSatisfied(state, nullptr); }
   double distanceGoal(const ob::State* state) const override {
     const search::PlannerState s = plannerState(state);
     const double position = goal_.positionError(s);
@@ -313,7 +329,19 @@ class GoalRegionAdapter final : public ob::GoalSampleableRegion {
   unsigned int maxSampleCount() const override { return std::numeric_limits<unsigned>::max(); }
 
  private:
+  void record(const ob::State* state) const {
+    const double duration = stateTime(state);
+    if (!recorder_.improvements.empty() && duration >= recorder_.improvements.back().second) {
+      return;
+    }
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                                recorder_.started)
+                          .count();
+    recorder_.improvements.emplace_back(ms, duration);
+  }
+
   search::GoalRegion goal_;
+  SolutionRecorder& recorder_;
 };
 
 // SST's cost: the duration of a motion (the difference of the time coordinates).
@@ -441,7 +469,8 @@ OmplRun runOmplPeer(const search::PlanningProblem& problem, OmplPlanner planner,
   ob::ScopedState<> start(space);
   setState(start.get(), problem.start, 0.0);
   pdef->addStartState(start);
-  pdef->setGoal(std::make_shared<GoalRegionAdapter>(si, problem.goal));
+  SolutionRecorder recorder;
+  pdef->setGoal(std::make_shared<GoalRegionAdapter>(si, problem.goal, recorder));
   pdef->setOptimizationObjective(std::make_shared<TimeObjective>(si));
 
   ob::PlannerPtr p;
@@ -459,38 +488,20 @@ OmplRun runOmplPeer(const search::PlanningProblem& problem, OmplPlanner planner,
   p->setup();
 
   OmplRun run;
-  const auto started = std::chrono::steady_clock::now();
+  recorder.started = std::chrono::steady_clock::now();
+  const auto started = recorder.started;
   const auto ms = [&started] {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
         .count();
   };
-  // Polled every iteration: the time limit, and each new best exact solution's duration.
-  const void* last_path = nullptr;
-  const ob::PlannerTerminationCondition condition([&]() {
-    const double now = ms();
-    if (pdef->hasExactSolution()) {
-      const ob::PathPtr best = pdef->getSolutionPath();
-      if (best.get() != last_path) {
-        last_path = best.get();
-        const auto* control_path = best->as<oc::PathControl>();
-        double duration = 0.0;
-        for (std::size_t i = 0; i < control_path->getControlCount(); ++i) {
-          duration += control_path->getControlDuration(i);
-        }
-        if (run.cost_history.empty() || duration < run.cost_history.back().second) {
-          run.cost_history.emplace_back(now, duration);
-        }
-        if (!run.first_ms) run.first_ms = now;
-      }
-    }
-    return now >= 1000.0 * budget_s;
-  });
+  const ob::PlannerTerminationCondition condition = ob::timedPlannerTerminationCondition(budget_s);
   const ob::PlannerStatus status = p->solve(condition);
   run.planning_ms = ms();
   run.status = status.asString();
   run.solved = pdef->hasExactSolution();
+  run.cost_history = recorder.improvements;
+  if (!run.cost_history.empty()) run.first_ms = run.cost_history.front().first;
   if (run.solved) {
-    if (!run.first_ms) run.first_ms = run.planning_ms;
     auto* path = pdef->getSolutionPath()->as<oc::PathControl>();
     run.trajectory = reintegrate(*propagator, *path);
     if (!run.trajectory.samples.empty()) run.cost_s = run.trajectory.samples.back().t;

@@ -66,6 +66,8 @@ nlohmann::json measure(const models::Trajectory& trajectory, const Tables& t) {
       models::analyseViolations(states, &t.physics_pitch, &t.physics_roll, 1e-6);
   return {{"states", states.speed.size()},
           {"violating_data_tables", data.combined_fraction},
+          {"violating_data_pitch_table", data.pitch_fraction.value_or(0.0)},
+          {"violating_data_roll_curvature_table", data.roll_curvature_fraction.value_or(0.0)},
           {"violating_physics_tables", physics.combined_fraction},
           {"max_excess_over_data_mps", data.max_excess}};
 }
@@ -96,38 +98,60 @@ class TablesSuite final : public BenchmarkSuite {
   }
 
   nlohmann::json summarize(const nlohmann::json& rows) const override {
-    std::map<std::string, std::vector<double>> time, data, physics;
-    std::map<std::string, int> runs, solved;
+    std::map<std::string, std::map<std::string, std::vector<double>>> values;
+    std::map<std::string, int> runs, solved, any_violation;
+    // Paired problems (same map and planner seed): traversal times with each kind of table.
+    std::map<std::string, std::map<std::string, double>> paired;
     for (const nlohmann::json& row : rows) {
       const std::string kind = row.value("tables", "");
       ++runs[kind];
       if (row.value("status", "") != "solved") continue;
       ++solved[kind];
-      time[kind].push_back(row["traversal_time_s"].get<double>());
-      data[kind].push_back(row["violating_data_tables"].get<double>());
-      physics[kind].push_back(row["violating_physics_tables"].get<double>());
+      for (const char* key :
+           {"traversal_time_s", "violating_data_tables", "violating_data_pitch_table",
+            "violating_data_roll_curvature_table", "violating_physics_tables"}) {
+        values[kind][key].push_back(row[key].get<double>());
+      }
+      any_violation[kind] += row["violating_data_tables"].get<double>() > 0.0;
+      const std::string problem = std::to_string(row["map_seed"].get<std::uint64_t>()) + "/" +
+                                  std::to_string(row["seed"].get<std::uint64_t>());
+      paired[problem][kind] = row["traversal_time_s"].get<double>();
     }
     nlohmann::json out = nlohmann::json::object();
     for (const auto& [kind, n] : runs) {
       out[kind] = {{"runs", n},
                    {"solved", solved[kind]},
-                   {"traversal_time_s", distributionJson(time[kind])},
-                   {"violating_data_tables", distributionJson(data[kind])},
-                   {"violating_physics_tables", distributionJson(physics[kind])}};
+                   {"trajectories_violating_data_tables", any_violation[kind]}};
+      for (auto& [key, v] : values[kind]) out[kind][key] = distributionJson(v);
     }
-    return {{"by_tables", out}};
+    int pairs = 0, data_faster = 0;
+    for (const auto& [problem, times] : paired) {
+      if (times.count("data") == 0 || times.count("physics") == 0) continue;
+      ++pairs;
+      data_faster += times.at("data") < times.at("physics");
+    }
+    return {
+        {"by_tables", out},
+        {"physics_data_pairs", pairs},
+        {"data_faster_than_physics", pairs > 0 ? static_cast<double>(data_faster) / pairs : 0.0}};
   }
 
   std::string summaryText(const nlohmann::json& summary) const override {
     std::ostringstream text;
     text << "tables    solved   traversal s (mean)   states over data tables (mean)   over "
             "physics tables (mean)\n";
+    const auto mean = [](const nlohmann::json& s, const char* key) {
+      return s.value(key, nlohmann::json::object()).value("mean", 0.0);
+    };
     for (const auto& [kind, s] : summary["by_tables"].items()) {
       text << kind << std::string(10 - std::min<std::size_t>(kind.size(), 9), ' ') << s["solved"]
-           << "/" << s["runs"] << "      " << s["traversal_time_s"].value("mean", 0.0) << "      "
-           << s["violating_data_tables"].value("mean", 0.0) << "      "
-           << s["violating_physics_tables"].value("mean", 0.0) << '\n';
+           << "/" << s["runs"] << "      " << mean(s, "traversal_time_s") << "      "
+           << mean(s, "violating_data_tables") << "      " << mean(s, "violating_physics_tables")
+           << '\n';
     }
+    text << "data-table plans faster than physics-table plans: fraction "
+         << summary["data_faster_than_physics"] << " of " << summary["physics_data_pairs"]
+         << " paired problems\n";
     return text.str();
   }
 

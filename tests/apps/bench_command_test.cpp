@@ -55,7 +55,7 @@ TEST_F(BenchCommandTest, ConvergenceRowsAreReSimulatedResults) {
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json result = read(path("c.json"));
   EXPECT_EQ(result["suite"], "convergence");
-  EXPECT_EQ(result["cases_total"], (5 + 6 + 3) * 6);  // no DEM problems without a data dir
+  EXPECT_EQ(result["cases_total"], (5 + 6 + 3) * 7);  // no DEM problems without a data dir
   ASSERT_EQ(result["rows"].size(), 6u);
   std::set<std::string> solvers;
   for (const nlohmann::json& row : result["rows"]) {
@@ -127,8 +127,8 @@ TEST_F(BenchCommandTest, WorkersRunTheCasesInSeparateProcesses) {
   options.suite = "convergence";
   options.settings.quick = true;
   options.cases = "";
-  // Cases 0, 27, 54, 81: flat fan (newton_fd, ceres), lattice (newton_fd), hill (ceres).
-  options.shard = "1/27";
+  // Cases 0, 29, 58, 87: flat fan (newton_fd, newton), lattice (ipopt), hill (ceres).
+  options.shard = "1/29";
   options.jobs = 2;
   options.executable = TERRATRAJ_EXECUTABLE;
   options.out = path("w.json");
@@ -139,9 +139,9 @@ TEST_F(BenchCommandTest, WorkersRunTheCasesInSeparateProcesses) {
   const nlohmann::json result = read(path("w.json"));
   ASSERT_EQ(result["rows"].size(), 4u) << err.str();
   EXPECT_EQ(result["rows"][0]["case"], 0);
-  EXPECT_EQ(result["rows"][1]["case"], 27);
-  EXPECT_EQ(result["rows"][2]["case"], 54);
-  EXPECT_EQ(result["rows"][3]["case"], 81);
+  EXPECT_EQ(result["rows"][1]["case"], 29);
+  EXPECT_EQ(result["rows"][2]["case"], 58);
+  EXPECT_EQ(result["rows"][3]["case"], 87);
   EXPECT_EQ(result["processes"], 2);
   for (const nlohmann::json& row : result["rows"]) {
     EXPECT_EQ(row["status"], "converged") << row.dump();
@@ -170,7 +170,7 @@ TEST_F(BenchCommandTest, BadInputIsNamedWithExitTwo) {
       {{"bench", "tables", "--time-limit", "nan"}, "time-limit"},
       {{"bench", "tables", "--jobs", "0"}, "--jobs"},
       {{"bench", "tables", "--cases", "7,x"}, "x"},
-      {{"bench", "convergence", "--quick", "--data-dir", "/nonexistent", "--cases", "84"},
+      {{"bench", "convergence", "--quick", "--data-dir", "/nonexistent", "--cases", "98"},
        "/nonexistent/dem_moon.tif"},
       {{"bench", "merge", "/nonexistent.json"}, "/nonexistent.json"},
   };

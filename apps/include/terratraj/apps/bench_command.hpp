@@ -43,8 +43,8 @@ struct BenchMergeOptions {
   std::optional<std::filesystem::path> plot;
 };
 
-/// Where the machine and the code are: host, cores, OS, compiler, commit (and whether the tree
-/// had uncommitted changes).
+/// Where the machine and the code are: host, cores, OS, compiler, and the commit the binary
+/// was built from (and whether the tree had uncommitted changes then).
 nlohmann::json benchMachineJson();
 
 int runBench(const BenchOptions& options, CommandContext& context);
