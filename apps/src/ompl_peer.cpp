@@ -129,18 +129,42 @@ bool runSteer(search::ExtensionIntegrator& integrator, const search::PlannerStat
 }
 
 // The state `elapsed` seconds into an extension (linear between its points; its end after it).
-search::PlannerState along(const search::Extension& e, double elapsed) {
-  if (elapsed >= e.points.back().t) return e.end;
-  const auto next = std::upper_bound(e.points.begin(), e.points.end(), elapsed,
-                                     [](double t, const search::PathPoint& p) { return t < p.t; });
+// The extension's path point at time t (t within the path). Between two points the speed
+// changes at a constant rate (the profile's), so the arc length grows quadratically in time:
+// the point is placed at that arc length (linear in s between the points), not linearly in t,
+// which would put it ahead of where the speed can have taken it.
+search::PathPoint pointAt(const search::Extension& e, double t) {
+  const auto next = std::upper_bound(e.points.begin() + 1, e.points.end() - 1, t,
+                                     [](double x, const search::PathPoint& p) { return x < p.t; });
   const search::PathPoint& b = *next;
   const search::PathPoint& a = *(next - 1);
-  const double w = b.t > a.t ? (elapsed - a.t) / (b.t - a.t) : 0.0;
+  const double dt = b.t - a.t;
+  const double tau = std::clamp(t - a.t, 0.0, std::max(dt, 0.0));
+  const double acceleration = dt > 0.0 ? (b.v - a.v) / dt : 0.0;
+  const double travelled = a.v * tau + 0.5 * acceleration * tau * tau;
+  const double w = b.s > a.s ? std::clamp(travelled / (b.s - a.s), 0.0, 1.0) : 0.0;
+  search::PathPoint p;
+  p.position = a.position + w * (b.position - a.position);
+  p.z = a.z + w * (b.z - a.z);
+  p.heading = a.heading + w * std::remainder(b.heading - a.heading, 2.0 * M_PI);
+  p.roll = a.roll + w * (b.roll - a.roll);
+  p.pitch = a.pitch + w * (b.pitch - a.pitch);
+  p.curvature = a.curvature + w * (b.curvature - a.curvature);
+  p.s = a.s + w * (b.s - a.s);
+  p.v = a.v + acceleration * tau;
+  p.t = t;
+  return p;
+}
+
+// The state `elapsed` seconds into an extension (its end after it).
+search::PlannerState along(const search::Extension& e, double elapsed) {
+  if (elapsed >= e.points.back().t || e.points.size() < 2) return e.end;
+  const search::PathPoint p = pointAt(e, elapsed);
   search::PlannerState s;
-  s.position = a.position + w * (b.position - a.position);
-  s.heading = a.heading + w * std::remainder(b.heading - a.heading, 2.0 * M_PI);
-  s.v = a.v + w * (b.v - a.v);
-  s.curvature = a.curvature + w * (b.curvature - a.curvature);
+  s.position = p.position;
+  s.heading = p.heading;
+  s.v = p.v;
+  s.curvature = p.curvature;
   return s;
 }
 
@@ -356,21 +380,6 @@ class TimeObjective final : public ob::OptimizationObjective {
   }
 };
 
-models::TrajectorySample sampleOf(const search::PathPoint& p, double t0) {
-  models::TrajectorySample sample;
-  sample.t = t0 + p.t;
-  sample.x = p.position.x();
-  sample.y = p.position.y();
-  sample.z = p.z;
-  sample.heading = p.heading;
-  sample.roll = p.roll;
-  sample.pitch = p.pitch;
-  sample.v = p.v;
-  sample.omega = p.v * p.curvature;
-  sample.curvature = p.curvature;
-  return sample;
-}
-
 // The solution re-integrated: each control's motion from the state OMPL reached, for the
 // control's duration.
 models::Trajectory reintegrate(const ExtensionPropagator& propagator, oc::PathControl& path) {
@@ -381,9 +390,16 @@ models::Trajectory reintegrate(const ExtensionPropagator& propagator, oc::PathCo
   for (std::size_t i = 0; i < path.getControlCount(); ++i) {
     if (!propagator.motion(plannerState(path.getState(i)), path.getControl(i), e)) break;
     const double duration = std::min(path.getControlDuration(i), e.duration);
+    double last_t = -1.0;
     for (std::size_t k = trajectory.samples.empty() ? 0 : 1; k < e.points.size(); ++k) {
       if (e.points[k].t > duration + 1e-9) break;
-      trajectory.samples.push_back(sampleOf(e.points[k], t0));
+      trajectory.samples.push_back(search::trajectorySample(e.points[k], t0));
+      last_t = e.points[k].t;
+    }
+    // A control cut before its extension ends: the point where OMPL's next state starts (the
+    // propagator's interpolation), so that the trajectory has no gap at the joint.
+    if (last_t < duration - 1e-9 && e.points.size() >= 2) {
+      trajectory.samples.push_back(search::trajectorySample(pointAt(e, duration), t0));
     }
     t0 += duration;
   }

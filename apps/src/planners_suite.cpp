@@ -69,10 +69,24 @@ nlohmann::json costAt(const search::PlanResult& result, double ms) {
   return jsonNumber(cost);
 }
 
-nlohmann::json checked(const search::PlanningProblem& problem, const models::Trajectory& t) {
+// The independent re-check: a trajectory's limits by search::TrajectoryChecker (relative
+// tolerance 1e-3); the violations named when there are any.
+search::CheckReport check(const search::PlanningProblem& problem, const models::Trajectory& t) {
   search::CheckTolerances tolerances;
   tolerances.relative = 1e-3;
-  return search::TrajectoryChecker(problem, tolerances).check(t).ok();
+  return search::TrajectoryChecker(problem, tolerances).check(t);
+}
+void addCheck(nlohmann::json& row, const search::PlanningProblem& problem,
+              const models::Trajectory& t) {
+  const search::CheckReport report = check(problem, t);
+  row["check_ok"] = report.ok();
+  if (report.ok()) return;
+  nlohmann::json violations = nlohmann::json::array();
+  for (const search::CheckViolation& v : report.violations) {
+    violations.push_back(
+        {{"limit", v.limit}, {"amount", jsonNumber(v.amount)}, {"sample", v.sample}});
+  }
+  row["violations"] = violations;
 }
 
 nlohmann::json prmRow(const search::BenchmarkWorld& w, std::uint64_t seed, double budget_s) {
@@ -93,7 +107,7 @@ nlohmann::json prmRow(const search::BenchmarkWorld& w, std::uint64_t seed, doubl
   for (const search::CostSample& s : r.cost_history) {
     row["cost_history"].push_back({jsonNumber(s.time_ms), jsonNumber(s.cost_s)});
   }
-  if (r.status == search::PlanStatus::kSolved) row["check_ok"] = checked(w.problem, r.trajectory);
+  if (r.status == search::PlanStatus::kSolved) addCheck(row, w.problem, r.trajectory);
   return row;
 }
 
@@ -114,7 +128,7 @@ nlohmann::json omplRow(const search::BenchmarkWorld& w, OmplPlanner planner, std
   }
   row["cost_1s"] = jsonNumber(at_1s);
   row["cost_final_s"] = r.solved ? jsonNumber(r.cost_s) : nlohmann::json(nullptr);
-  if (r.solved) row["check_ok"] = checked(w.problem, r.trajectory);
+  if (r.solved) addCheck(row, w.problem, r.trajectory);
   return row;
 }
 
@@ -137,15 +151,14 @@ nlohmann::json latticeRows(const search::BenchmarkWorld& w, double budget_s) {
                 {"best_cost_s", jsonNumber(a.best_cost_s)},
                 {"planning_ms", a.planning_time_ms},
                 {"expansions", a.search.expansions}};
-  if (a.status == search::PlanStatus::kSolved)
-    out["ara"]["check_ok"] = checked(w.problem, a.trajectory);
+  if (a.status == search::PlanStatus::kSolved) addCheck(out["ara"], w.problem, a.trajectory);
   const search::TaeaslPlanner taeasl(graph);
   const search::PlanResult t = taeasl.solve(search::TerminationCondition::timeLimit(budget_s));
   nlohmann::json classes = nlohmann::json::array();
   bool all_ok = true;
   for (const search::PlanSolution& s : t.solutions) {
     classes.push_back({{"cost_s", jsonNumber(s.cost_s)}, {"found_ms", jsonNumber(s.found_ms)}});
-    all_ok = all_ok && checked(w.problem, s.trajectory).get<bool>();
+    all_ok = all_ok && check(w.problem, s.trajectory).ok();
   }
   out["taeasl"] = {{"status", search::planStatusName(t.status)},
                    {"classes", classes},

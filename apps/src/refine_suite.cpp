@@ -4,10 +4,12 @@
 // search::TrajectoryChecker.
 
 #include <chrono>
+#include <cstdlib>
 #include <sstream>
 
 #include "terratraj/apps/benchmark_suite.hpp"
 #include "terratraj/apps/json_number.hpp"
+#include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/search/benchmark_world.hpp"
 #include "terratraj/search/candidate_refiner.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
@@ -53,9 +55,19 @@ std::vector<models::Trajectory> plan(const std::string& planner,
   return out;
 }
 
+// With TERRATRAJ_REFINE_BENCH_DUMP=DIR, a candidate whose refinement failed is written there
+// (to reproduce it with `terratraj refine`); returns the file, or "".
+std::string dumpFailure(const models::Trajectory& candidate, const std::string& name) {
+  const char* dir = std::getenv("TERRATRAJ_REFINE_BENCH_DUMP");
+  if (dir == nullptr || *dir == '\0') return "";
+  const std::string file = std::string(dir) + "/" + name + ".csv";
+  models::writeTrajectoryCsv(candidate, file);
+  return file;
+}
+
 nlohmann::json refineOne(const search::BenchmarkWorld& w, const search::CandidateRefiner& refiner,
-                         const search::ReferenceFrames& frames,
-                         const models::Trajectory& candidate) {
+                         const search::ReferenceFrames& frames, const models::Trajectory& candidate,
+                         const std::string& name) {
   const auto started = std::chrono::steady_clock::now();
   const search::RefinementResult r = refiner.refine(candidate);
   nlohmann::json out;
@@ -65,7 +77,11 @@ nlohmann::json refineOne(const search::BenchmarkWorld& w, const search::Candidat
   out["method"] = search::refineMethodName(r.method);
   out["candidate_s"] = duration(candidate);
   out["lower_bound_s"] = w.lowerBoundTime();
-  if (r.status != ocp::SolveStatus::kConverged) return out;
+  if (r.status != ocp::SolveStatus::kConverged) {
+    const std::string dumped = dumpFailure(candidate, name);
+    if (!dumped.empty()) out["candidate_file"] = dumped;
+    return out;
+  }
   out["refined_s"] = r.verified.final_time;
   out["ratio"] = r.verified.final_time / duration(candidate);
   std::vector<Eigen::Vector2d> before, after;
@@ -176,8 +192,10 @@ class RefineSuite final : public BenchmarkSuite {
     const std::vector<models::Trajectory> found = plan(planner, w.problem, seed, budget);
     row["status"] = found.empty() ? "no candidate" : "done";
     row["candidates"] = nlohmann::json::array();
-    for (const models::Trajectory& candidate : found) {
-      row["candidates"].push_back(refineOne(w, refiner, frames, candidate));
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      const std::string name =
+          planner + "_" + kind_name + "_seed" + std::to_string(seed) + "_" + std::to_string(k);
+      row["candidates"].push_back(refineOne(w, refiner, frames, found[k], name));
     }
     return row;
   }

@@ -69,6 +69,21 @@ ExtensionIntegrator::ExtensionIntegrator(const PlanningProblem& problem,
                                          const IntegrationSettings& settings)
     : problem_(&problem), settings_(settings), steering_(problem.limits) {}
 
+models::TrajectorySample trajectorySample(const PathPoint& point, double t0) {
+  models::TrajectorySample sample;
+  sample.t = t0 + point.t;
+  sample.x = point.position.x();
+  sample.y = point.position.y();
+  sample.z = point.z;
+  sample.heading = point.heading;
+  sample.roll = point.roll;
+  sample.pitch = point.pitch;
+  sample.v = point.v;
+  sample.omega = point.v * point.curvature;
+  sample.curvature = point.curvature;
+  return sample;
+}
+
 bool ExtensionIntegrator::attitudeAt(PathPoint& point, ExtensionStatus& status) {
   const models::AttitudeStatus result = problem_->vehicle->compute(
       {point.position.x(), point.position.y(), point.heading}, workspace_, attitude_);

@@ -33,21 +33,6 @@ IntegrationSettings settingsFor(const PlanningProblem& problem, const PrmOptions
   return settings;
 }
 
-models::TrajectorySample toSample(const PathPoint& point, double t0) {
-  models::TrajectorySample sample;
-  sample.t = t0 + point.t;
-  sample.x = point.position.x();
-  sample.y = point.position.y();
-  sample.z = point.z;
-  sample.heading = point.heading;
-  sample.roll = point.roll;
-  sample.pitch = point.pitch;
-  sample.v = point.v;
-  sample.omega = point.v * point.curvature;
-  sample.curvature = point.curvature;
-  return sample;
-}
-
 }  // namespace
 
 KinodynamicPrm::KinodynamicPrm(const PlanningProblem& problem, const PrmOptions& options)
@@ -363,7 +348,7 @@ models::Trajectory KinodynamicPrm::trajectoryTo(std::int32_t id, const Extension
   const auto append = [&](const PlannerState& from, const ExtensionRequest& request, double t0) {
     integrator_.extend(from, request, edge);
     for (std::size_t i = trajectory.samples.empty() ? 0 : 1; i < edge.points.size(); ++i) {
-      trajectory.samples.push_back(toSample(edge.points[i], t0));
+      trajectory.samples.push_back(trajectorySample(edge.points[i], t0));
     }
     length_m += edge.length;
   };

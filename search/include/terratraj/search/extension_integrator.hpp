@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 
 #include "terratraj/models/terrain_following_model.hpp"
+#include "terratraj/models/trajectory.hpp"
 #include "terratraj/search/continuous_curvature_steering.hpp"
 #include "terratraj/search/planning_problem.hpp"
 #include "terratraj/search/speed_profile.hpp"
@@ -68,6 +69,9 @@ struct PathPoint {
   double v = 0.0;          ///< speed [m/s] (after the speed profile)
   double t = 0.0;          ///< time from the start [s]
 };
+
+/// A path point as a trajectory row at time t0 + point.t (omega = v * curvature).
+models::TrajectorySample trajectorySample(const PathPoint& point, double t0);
 
 /// The result of one extension. Reuse one object: its buffers are kept.
 struct Extension {
