@@ -382,7 +382,8 @@ class TimeObjective final : public ob::OptimizationObjective {
 
 // The solution re-integrated: each control's motion from the state OMPL reached, for the
 // control's duration.
-models::Trajectory reintegrate(const ExtensionPropagator& propagator, oc::PathControl& path) {
+models::Trajectory reintegrate(const ExtensionPropagator& propagator,
+                               const search::PlanningProblem& problem, oc::PathControl& path) {
   models::Trajectory trajectory;
   trajectory.has_column.fill(true);
   search::Extension e;
@@ -399,7 +400,18 @@ models::Trajectory reintegrate(const ExtensionPropagator& propagator, oc::PathCo
     // A control cut before its extension ends: the point where OMPL's next state starts (the
     // propagator's interpolation), so that the trajectory has no gap at the joint.
     if (last_t < duration - 1e-9 && e.points.size() >= 2) {
-      trajectory.samples.push_back(search::trajectorySample(pointAt(e, duration), t0));
+      search::PathPoint joint = pointAt(e, duration);
+      // The attitude at the joint from the vehicle model, not interpolated (the checker
+      // recomputes it there).
+      models::AttitudeWorkspace workspace;
+      models::AttitudeResult attitude;
+      if (problem.vehicle->compute({joint.position.x(), joint.position.y(), joint.heading},
+                                   workspace, attitude) == models::AttitudeStatus::kOk) {
+        joint.z = attitude.attitude.z;
+        joint.roll = attitude.attitude.roll;
+        joint.pitch = attitude.attitude.pitch;
+      }
+      trajectory.samples.push_back(search::trajectorySample(joint, t0));
     }
     t0 += duration;
   }
@@ -519,7 +531,7 @@ OmplRun runOmplPeer(const search::PlanningProblem& problem, OmplPlanner planner,
   if (!run.cost_history.empty()) run.first_ms = run.cost_history.front().first;
   if (run.solved) {
     auto* path = pdef->getSolutionPath()->as<oc::PathControl>();
-    run.trajectory = reintegrate(*propagator, *path);
+    run.trajectory = reintegrate(*propagator, problem, *path);
     if (!run.trajectory.samples.empty()) run.cost_s = run.trajectory.samples.back().t;
   }
   return run;

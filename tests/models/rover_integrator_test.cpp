@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/rocker_bogie_attitude_model.hpp"
@@ -139,6 +140,18 @@ TEST(RoverIntegrator, TheThreeMethodsAgreeOnRoughTerrain) {
   EXPECT_GT((reference.head<2>() - start.head<2>()).norm(), 3.0);  // it really went somewhere
 }
 
+// The controls with parameter i moved by +h and by -h.
+std::pair<PolynomialControls, PolynomialControls> perturbed(const PolynomialControls& controls,
+                                                            Eigen::Index i, double h) {
+  PolynomialControls plus = controls, minus = controls;
+  Eigen::VectorXd qp = controls.parameters(), qm = controls.parameters();
+  qp(i) += h;
+  qm(i) -= h;
+  plus.setParameters(qp);
+  minus.setParameters(qm);
+  return {plus, minus};
+}
+
 // Central differences of the final state by each control parameter.
 Eigen::MatrixXd finiteDifferenceSensitivity(const RoverKinematics& kinematics,
                                             const IntegratorOptions& options,
@@ -150,12 +163,7 @@ Eigen::MatrixXd finiteDifferenceSensitivity(const RoverKinematics& kinematics,
   IntegratorOptions plain = options;
   plain.sensitivities = false;
   for (Eigen::Index i = 0; i < q.size(); ++i) {
-    PolynomialControls plus = controls, minus = controls;
-    Eigen::VectorXd qp = q, qm = q;
-    qp(i) += h;
-    qm(i) -= h;
-    plus.setParameters(qp);
-    minus.setParameters(qm);
+    const auto [plus, minus] = perturbed(controls, i, h);
     fd.col(i) = (integrateTo(kinematics, plain, start, plus, duration) -
                  integrateTo(kinematics, plain, start, minus, duration)) /
                 (2 * h);
@@ -266,12 +274,7 @@ TEST(RoverIntegrator, IntegralSensitivitiesMatchFiniteDifferencesWhateverCameBef
     plain.sensitivities = false;
     const double h = 1e-5;
     for (Eigen::Index i = 0; i < q.size(); ++i) {
-      PolynomialControls plus = controls, minus = controls;
-      Eigen::VectorXd qp = q, qm = q;
-      qp(i) += h;
-      qm(i) -= h;
-      plus.setParameters(qp);
-      minus.setParameters(qm);
+      const auto [plus, minus] = perturbed(controls, i, h);
       RoverIntegrator fresh(kinematics, plain);
       IntegrationResult up, down;
       fresh.integrate(start, plus, 6.0, {}, up, integrand);
