@@ -99,6 +99,7 @@ nlohmann::json prmRow(const search::BenchmarkWorld& w, std::uint64_t seed, doubl
                                                          : nlohmann::json(nullptr)},
                         {"first_cost_s", jsonNumber(r.first_solution_cost_s)},
                         {"cost_1s", costAt(r, 1000.0)},
+                        {"cost_10s", costAt(r, 10000.0)},
                         {"cost_final_s", jsonNumber(r.best_cost_s)},
                         {"budget_s", budget_s},
                         {"trapped_fraction", r.trappedFraction()},
