@@ -199,12 +199,19 @@ class ExtensionPropagator final : public oc::StatePropagator {
     last_t_ = t0 + duration;
   }
 
-  /// How long a control's motion from `from` lasts [s]; negative when it is trapped.
-  double motionDuration(const search::PlannerState& from, const oc::Control* control) const {
+  /// Runs the motion of `control` from `from` and keeps it as the cached motion, so that the
+  /// propagation that follows from `from` continues along it instead of running it again.
+  /// Returns its duration [s]; negative when it is trapped.
+  double prime(const ob::State* from, const oc::Control* control) const {
+    const search::PlannerState start = plannerState(from);
     const double* u = control->as<oc::RealVectorControlSpace::ControlType>()->values;
-    return runSteer(integrator_, from, steerOf(u, from, limits_), scratch_, probe_)
-               ? probe_.duration
-               : -1.0;
+    std::copy(u, u + kControlDims, control_);
+    ok_ = runSteer(integrator_, start, steerOf(u, start, limits_), scratch_, extension_);
+    elapsed_ = 0.0;
+    cached_ = true;
+    last_ = start;
+    last_t_ = stateTime(from);
+    return ok_ ? extension_.duration : -1.0;
   }
 
   /// The motion of `control` from `from` (for the re-integrated solution).
@@ -217,7 +224,7 @@ class ExtensionPropagator final : public oc::StatePropagator {
  private:
   models::VehicleLimits limits_;
   mutable search::ExtensionIntegrator integrator_;
-  mutable search::Extension extension_, scratch_, probe_;
+  mutable search::Extension extension_, scratch_;
   mutable double control_[kControlDims] = {};
   mutable bool cached_ = false, ok_ = false;
   mutable double elapsed_ = 0.0, last_t_ = 0.0;
@@ -269,7 +276,7 @@ class SteeringControlSampler final : public oc::DirectedControlSampler {
     // point at a random distance and angle behind it, as the PRM's goal connection.
     u[3] = target.heading + rng_.uniformReal(-jitter_, jitter_);
     u[4] = rng_.uniformReal(kSampledApproachMinM, kMaxApproachM);
-    const double duration = propagator_.motionDuration(plannerState(source), control);
+    const double duration = propagator_.prime(source, control);
     if (duration <= 0.0) return 0;
     const unsigned steps =
         std::clamp<unsigned>(static_cast<unsigned>(std::ceil(duration / kStepS)), 1u, kMaxSteps);
