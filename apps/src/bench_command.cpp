@@ -15,6 +15,7 @@
 
 #include "terratraj/apps/build_commit.hpp"
 #include "terratraj/apps/cli.hpp"
+#include "terratraj/apps/output_paths.hpp"
 #include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/terrain/input_error.hpp"
 
@@ -49,13 +50,6 @@ fs::path defaultOut(const std::string& suite, const Shard& shard) {
   if (shard.count == 1) return "bench-" + suite + ".json";
   return "bench-" + suite + "-" + std::to_string(shard.index) + "-of-" +
          std::to_string(shard.count) + ".json";
-}
-
-void writeJson(const nlohmann::json& json, const fs::path& path) {
-  if (path.has_parent_path()) fs::create_directories(path.parent_path());
-  std::ofstream file(path);
-  file << json.dump(1) << '\n';
-  if (!file) throw InputError(path.string() + ": cannot be written");
 }
 
 nlohmann::json readResult(const fs::path& path) {
@@ -218,11 +212,11 @@ nlohmann::json plotFigures(const fs::path& png, const fs::path& result_file,
 
 int finish(const BenchmarkSuite& suite, nlohmann::json result, const fs::path& out,
            const std::optional<fs::path>& plot, bool quiet, CommandContext& context) {
-  writeJson(result, out);
+  writeJsonFile(result, out, 1);
   if (quiet) return kExitSuccess;  // a worker: its parent reads the file
   if (plot) {
     result["plots"] = plotFigures(*plot, out, context);
-    writeJson(result, out);
+    writeJsonFile(result, out, 1);
   }
   if (context.json) {
     nlohmann::json brief = result;

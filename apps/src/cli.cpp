@@ -26,7 +26,7 @@
 namespace terratraj::apps {
 namespace {
 
-constexpr const char* kVersion = "terratraj 0.1.0";
+constexpr const char* kVersion = kTerratrajVersion;
 
 std::shared_ptr<spdlog::logger> makeLogger(std::ostream& err) {
   auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(err, /*force_flush=*/true);
@@ -93,8 +93,9 @@ void addGeneratorOptions(CLI::App& command, terrain::GeneratorOptions& generator
 
 }  // namespace
 
-int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
-  CommandContext context{out, err, wantsJson(argc, argv), makeLogger(err)};
+int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
+           const std::atomic<bool>* stop) {
+  CommandContext context{out, err, wantsJson(argc, argv), makeLogger(err), stop};
 
   CLI::App app{"terratraj: optimal trajectories for ground rovers on terrain.", "terratraj"};
   app.set_version_flag("--version", kVersion);

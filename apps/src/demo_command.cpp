@@ -3,6 +3,7 @@
 #include <fstream>
 #include <ostream>
 
+#include "terratraj/apps/output_paths.hpp"
 #include "terratraj/apps/plan_command.hpp"
 #include "terratraj/apps/terrain_commands.hpp"
 #include "terratraj/terrain/input_error.hpp"
@@ -14,12 +15,6 @@ namespace {
 
 constexpr double kPlanTimeLimitS = 1.0;     // TAEASL's budget [s]
 constexpr double kRefineTimeLimitS = 30.0;  // per candidate [s]
-
-void writeJson(const nlohmann::json& json, const std::filesystem::path& path) {
-  std::ofstream file(path);
-  file << json.dump(2) << '\n';
-  if (!file) throw InputError(path.string() + ": cannot be written");
-}
 
 }  // namespace
 
@@ -80,7 +75,7 @@ int runDemo(const DemoOptions& options, CommandContext& context) {
   };
   const std::filesystem::path report_file = options.out_dir / "report.json";
   report["report"] = report_file.string();
-  writeJson(report, report_file);
+  writeJsonFile(report, report_file);
   context.log->info("demo: wrote {}", report_file.string());
   if (context.json) {
     context.out << report.dump(2) << '\n';

@@ -9,6 +9,7 @@
 
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/json_number.hpp"
+#include "terratraj/apps/output_paths.hpp"
 #include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
@@ -16,6 +17,7 @@
 #include "terratraj/apps/refine_command.hpp"
 #include "terratraj/apps/solve_command.hpp"
 #include "terratraj/apps/vehicle_factory.hpp"
+#include "terratraj/apps/verdict_json.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/lattice_graph.hpp"
@@ -33,14 +35,6 @@ std::string formatNumber(double value) {
   std::ostringstream text;
   text << value;
   return text.str();
-}
-
-void createDirectories(const std::filesystem::path& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) {
-    throw InputError("--out-dir: cannot create '" + dir.string() + "': " + error.message());
-  }
 }
 
 // The planner's view of the problem file's start and goal.
@@ -73,14 +67,6 @@ search::GoalRegion goalRegion(const ProblemSpec& problem) {
 
 }  // namespace
 
-nlohmann::json checkReportJson(const search::CheckReport& check) {
-  nlohmann::json violated = nlohmann::json::array();
-  for (const search::CheckViolation& v : check.violations) violated.push_back(v.limit);
-  return {{"ok", check.ok()},
-          {"constraint_violation", check.max_violation},
-          {"violated_limits", violated}};
-}
-
 nlohmann::json planReportJson(const search::PlanResult& result, const PlanReportInfo& info) {
   nlohmann::json history = nlohmann::json::array();
   for (const search::CostSample& sample : result.cost_history) {
@@ -93,13 +79,6 @@ nlohmann::json planReportJson(const search::PlanResult& result, const PlanReport
     return k < info.checks.size() ? checkReportJson(info.checks[k]) : nlohmann::json(nullptr);
   };
   nlohmann::json solutions = nlohmann::json::array();
-  if (result.status == search::PlanStatus::kSolved && result.solutions.empty()) {
-    solutions.push_back({{"cost_s", jsonNumber(result.best_cost_s)},
-                         {"length_m", jsonNumber(result.length_m)},
-                         {"homotopy", ""},
-                         {"file", fileAt(0)},
-                         {"check", checkJson(0)}});
-  }
   for (std::size_t k = 0; k < result.solutions.size(); ++k) {
     const search::PlanSolution& s = result.solutions[k];
     solutions.push_back({{"cost_s", jsonNumber(s.cost_s)},
@@ -110,6 +89,11 @@ nlohmann::json planReportJson(const search::PlanResult& result, const PlanReport
                          {"proven_optimal", s.proven_optimal},
                          {"found_ms", s.found_ms},
                          {"check", checkJson(k)}});
+  }
+  nlohmann::json rejected = nlohmann::json::array();
+  for (const search::RejectedSolution& r : result.rejected) {
+    rejected.push_back(
+        {{"cost_s", jsonNumber(r.cost_s)}, {"homotopy", r.homotopy}, {"reason", r.reason}});
   }
   const search::PlanStatistics& st = result.statistics;
   nlohmann::json statistics{{"iterations", st.iterations},
@@ -143,6 +127,7 @@ nlohmann::json planReportJson(const search::PlanResult& result, const PlanReport
       {"nodes", result.nodes},
       {"trapped_fraction", result.trappedFraction()},
       {"solutions", solutions},
+      {"rejected_solutions", rejected},
       {"seed", info.seed},
       {"reason", result.reason},
       {"best_cost_s", jsonNumber(result.best_cost_s)},
@@ -201,28 +186,14 @@ void checkGoalReachable(const ProblemSpec& problem, const search::LatticeGraph& 
   }
 }
 
-// Writes every solution, re-checks it independently and fills the report's info.
-void writeSolutions(const search::PlanResult& result, const search::PlanningProblem& query,
-                    const std::filesystem::path& out_dir, PlanReportInfo& info,
-                    CommandContext& context) {
-  if (result.status != search::PlanStatus::kSolved) return;
-  createDirectories(out_dir);
-  const auto write = [&](const models::Trajectory& trajectory, std::size_t k) {
+// Writes every solution (each passed the verdict in the planner) and fills the report's info.
+void writeSolutions(const search::PlanResult& result, const std::filesystem::path& out_dir,
+                    PlanReportInfo& info) {
+  for (std::size_t k = 0; k < result.solutions.size(); ++k) {
     const std::filesystem::path file = out_dir / ("solution_" + std::to_string(k) + ".csv");
-    models::writeTrajectoryCsv(trajectory, file);
+    models::writeTrajectoryCsv(result.solutions[k].trajectory, file);
     info.files.push_back(file);
-    info.checks.push_back(search::TrajectoryChecker(query).check(trajectory));
-    if (!info.checks.back().ok()) {
-      context.log->warn("the re-check of solution {} found violations:\n{}", k,
-                        info.checks.back().summary());
-    }
-  };
-  if (result.solutions.empty()) {
-    write(result.trajectory, 0);
-  } else {
-    for (std::size_t k = 0; k < result.solutions.size(); ++k) {
-      write(result.solutions[k].trajectory, k);
-    }
+    info.checks.push_back(result.solutions[k].check);
   }
 }
 
@@ -274,7 +245,7 @@ search::PlanResult runLatticePlanner(const ProblemSpec& problem,
         {"load_ms", load_ms}}}};
 
   const search::TerminationCondition termination =
-      search::TerminationCondition::timeLimit(problem.planner.time_limit_s);
+      search::TerminationCondition::timeLimit(problem.planner.time_limit_s).stopFlag(context.stop);
   if (problem.planner.kind == PlannerKind::kLattice) {
     search::LatticePlannerOptions options;
     options.algorithm = problem.planner.algorithm == "astar" ? search::LatticeAlgorithm::kAStar
@@ -334,15 +305,10 @@ search::PlanningProblem planningProblem(const ProblemSpec& problem, const Proble
 
 namespace {
 
-// The candidates of a plan: every solution, or the PRM's single trajectory.
+// The candidates of a plan: every solution.
 std::vector<const models::Trajectory*> candidatesOf(const search::PlanResult& result) {
   std::vector<const models::Trajectory*> candidates;
-  if (result.status != search::PlanStatus::kSolved) return candidates;
-  if (result.solutions.empty()) {
-    candidates.push_back(&result.trajectory);
-  } else {
-    for (const search::PlanSolution& s : result.solutions) candidates.push_back(&s.trajectory);
-  }
+  for (const search::PlanSolution& s : result.solutions) candidates.push_back(&s.trajectory);
   return candidates;
 }
 
@@ -367,10 +333,14 @@ RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScen
   double ratio_sum = 0.0;
   int ratios = 0, kept = 0;
   for (std::size_t k = 0; k < candidates.size(); ++k) {
-    context.log->info("refining solution {} of {}", k, candidates.size());
+    if (context.stopRequested()) break;
+    context.log->info("refining solution {} of {} ({} samples)", k + 1, candidates.size(),
+                      candidates[k]->samples.size());
     search::RefinementResult r = refiner.refine(*candidates[k]);
     std::optional<std::filesystem::path> file;
-    if (r.verified.ok) {
+    if (r.returned_candidate) {
+      file = options.out_dir / ("solution_" + std::to_string(k) + ".csv");
+    } else if (r.verified.ok) {
       file = options.out_dir / ("refined_" + std::to_string(k) + ".csv");
       models::writeTrajectoryCsv(r.verified.trajectory, *file);
     }
@@ -402,9 +372,8 @@ RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScen
       {"max_intervals", settings.max_intervals},
       {"min_clearance_m", settings.min_clearance_m},
       {"max_iterations", settings.transcription.max_iterations},
-      {"time_limit_s", settings.transcription.time_limit_s
-                           ? nlohmann::json(*settings.transcription.time_limit_s)
-                           : nlohmann::json(nullptr)},
+      {"time_limit_s",
+       settings.time_limit_s ? nlohmann::json(*settings.time_limit_s) : nlohmann::json(nullptr)},
       {"candidates", candidates.size()},
       {"converged", refined.converged},
       {"homotopy_kept", kept},
@@ -456,17 +425,18 @@ std::string planSummary(const search::PlanResult& result, const PlanReportInfo& 
       << result.planning_time_ms << " ms, " << result.nodes << " nodes)";
   if (!result.reason.empty()) out << ": " << result.reason;
   out << '\n';
+  for (const search::RejectedSolution& r : result.rejected) {
+    out << "  rejected        duration " << r.cost_s << " s"
+        << (r.homotopy.empty() ? "" : ", class " + r.homotopy) << ": " << r.reason << '\n';
+  }
   if (result.status != search::PlanStatus::kSolved) return out.str();
   out << "  first solution  " << *result.first_solution_ms << " ms, cost "
       << result.first_solution_cost_s << " s\n";
   for (std::size_t k = 0; k < info.files.size(); ++k) {
-    const bool has = k < result.solutions.size();
-    const double cost = has ? result.solutions[k].cost_s : result.best_cost_s;
-    const double length = has ? result.solutions[k].length_m : result.length_m;
-    out << "  solution " << k << "      cost " << cost << " s, length " << length << " m";
-    if (has && !result.solutions[k].homotopy.empty()) {
-      out << ", class " << result.solutions[k].homotopy;
-    }
+    const search::PlanSolution& solution = result.solutions[k];
+    out << "  solution " << k << "      duration " << solution.cost_s << " s, length "
+        << solution.length_m << " m";
+    if (!solution.homotopy.empty()) out << ", class " << solution.homotopy;
     out << ", re-check " << (info.checks[k].ok() ? "ok" : "VIOLATED") << ", "
         << info.files[k].string() << '\n';
     if (refined && k < refined->results.size()) {
@@ -474,9 +444,10 @@ std::string planSummary(const search::PlanResult& result, const PlanReportInfo& 
       out << "    refined       " << ocp::solveStatusName(r.status) << " by "
           << search::refineMethodName(r.method) << " in " << r.solve_time_ms << " ms";
       if (r.refined_figures) {
-        out << ": cost " << r.refined_figures->duration_s << " s (x" << r.costRatio()
-            << "), length " << r.refined_figures->length_m << " m, class '"
-            << r.refined_figures->homotopy << "' " << (r.homotopy_kept ? "kept" : "CHANGED");
+        out << ": cost " << r.refined_figures->cost << " (x" << r.costRatio()
+            << " the candidate's), duration " << r.refined_figures->duration_s << " s, length "
+            << r.refined_figures->length_m << " m, class '" << r.refined_figures->homotopy << "' "
+            << (r.homotopy_kept ? "kept" : "CHANGED");
       }
       if (!r.reason.empty()) out << "; " << r.reason;
       if (refined->files[k]) out << ", " << refined->files[k]->string();
@@ -489,12 +460,18 @@ std::string planSummary(const search::PlanResult& result, const PlanReportInfo& 
 }  // namespace
 
 PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandContext& context) {
+  // Every output is checked before the work starts.
+  ensureWritableFolder(options.out_dir, "--out-dir");
+  if (options.plot) ensureWritableFile(*options.plot, "--plot");
   const ProblemScene scene(problem, context);
   const models::TerrainFollowingModel& vehicle = scene.vehicle();
   const search::PlanningProblem query = planningProblem(problem, scene);
   // Bad refine settings fail before planning.
   std::optional<search::RefinementOptions> settings;
-  if (options.refine) settings = refinementOptions(problem, options.method);
+  if (options.refine) {
+    settings = refinementOptions(problem, options.method);
+    settings->stop = context.stop;
+  }
 
   PlanReportInfo info;
   info.planner = plannerKindName(problem.planner.kind);
@@ -507,11 +484,12 @@ PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandCon
     search::KinodynamicPrm planner(query, prm);
     context.log->info("planning with prm for {} s (seed {}, {} model)",
                       problem.planner.time_limit_s, prm.seed, vehicle.name());
-    result = planner.solve(search::TerminationCondition::timeLimit(problem.planner.time_limit_s));
+    result = planner.solve(search::TerminationCondition::timeLimit(problem.planner.time_limit_s)
+                               .stopFlag(context.stop));
   } else {
     result = runLatticePlanner(problem, query, info, context);
   }
-  writeSolutions(result, query, options.out_dir, info, context);
+  writeSolutions(result, options.out_dir, info);
 
   PlanRun run;
   run.report = planReportJson(result, info);
@@ -524,15 +502,21 @@ PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandCon
                                run.report, context);
   }
   if (options.plot) {
-    createDirectories(options.plot->has_parent_path() ? options.plot->parent_path()
-                                                      : std::filesystem::path("."));
     run.report["plots"] = plotPlan(problem, scene, frames, result, info,
                                    refined ? &*refined : nullptr, *options.plot, context)
                               .toJson();
   }
+  if (context.stopRequested()) run.report["stopped_by"] = "interrupt";
   run.summary = planSummary(result, info, refined ? &*refined : nullptr);
   const bool solved = result.status == search::PlanStatus::kSolved;
   run.exit_status = solved && (!refined || refined->converged > 0) ? kExitSuccess : kExitNotSolved;
+  nlohmann::json saved = run.report;
+  saved["version"] = kTerratrajVersion;
+  saved["command"] = options.refine ? "plan --refine" : "plan";
+  saved["problem"] = problemJson(problem);
+  const std::filesystem::path report_file = options.out_dir / "report.json";
+  writeJsonFile(saved, report_file);
+  run.report["report_file"] = report_file.string();
   return run;
 }
 

@@ -32,10 +32,12 @@ namespace fs = std::filesystem;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRightAngleDeg = 90.0;  // upper bound (open) of pitch, roll, slope limits
-constexpr int kMinGridSide = 2;          // generate.rows / cols
-constexpr int kMinIntervals = 2;         // solver.intervals
-constexpr int kMaxIntervals = 100000;    // keeps allocations sane
-constexpr int kMinIterations = 1;        // solver.max_iterations
+constexpr double kMinSpeedLimit = 0.01;  // vehicle.limits.v_max [m/s]
+constexpr double kMaxSpeedLimit = 50.0;
+constexpr int kMinGridSide = 2;        // generate.rows / cols
+constexpr int kMinIntervals = 2;       // solver.intervals
+constexpr int kMaxIntervals = 100000;  // keeps allocations sane
+constexpr int kMinIterations = 1;      // solver.max_iterations
 constexpr int kMaxIterations = 1000000;
 constexpr int kMinHomotopyClasses = 1;  // planner.homotopy_classes
 constexpr int kMaxHomotopyClasses = 1000;
@@ -160,6 +162,9 @@ struct Range {
   static Range positive() { return {Bound::kOpen, 0.0, Bound::kNone, 0.0, ""}; }
   static Range nonNegative() { return {Bound::kClosed, 0.0, Bound::kNone, 0.0, ""}; }
   static Range atLeast(double low) { return {Bound::kClosed, low, Bound::kNone, 0.0, ""}; }
+  static Range closed(double low, double high, std::string unit_name) {
+    return {Bound::kClosed, low, Bound::kClosed, high, std::move(unit_name)};
+  }
   static Range openInterval(double low, double high, std::string unit_name) {
     return {Bound::kOpen, low, Bound::kOpen, high, std::move(unit_name)};
   }
@@ -566,11 +571,13 @@ VehicleLimits parseLimits(const Context& ctx, const Field& field) {
                       {"v_max", "a_max", "omega_max", "kappa_max", "sigma_max", "pitch_max",
                        "pitch_max_deg", "roll_max", "roll_max_deg"});
   VehicleLimits limits;
-  map.readNumberInto("v_max", Range::positive(), limits.v_max);
-  map.readNumberInto("a_max", Range::positive(), limits.a_max);
-  map.readNumberInto("omega_max", Range::positive(), limits.omega_max);
-  map.readNumberInto("kappa_max", Range::positive(), limits.kappa_max);
-  map.readNumberInto("sigma_max", Range::positive(), limits.sigma_max);
+  // The ranges of ground rovers: a limit outside them (1e-12, 1e300) is a typo or a unit
+  // error, and the solvers' scaling would not survive it.
+  map.readNumberInto("v_max", Range::closed(kMinSpeedLimit, kMaxSpeedLimit, "m/s"), limits.v_max);
+  map.readNumberInto("a_max", Range::closed(1e-3, 100.0, "m/s^2"), limits.a_max);
+  map.readNumberInto("omega_max", Range::closed(1e-3, 100.0, "rad/s"), limits.omega_max);
+  map.readNumberInto("kappa_max", Range::closed(1e-3, 1000.0, "1/m"), limits.kappa_max);
+  map.readNumberInto("sigma_max", Range::closed(1e-4, 1e4, "1/(m s)"), limits.sigma_max);
   map.readAngleInto("pitch_max", rightAngleRangeDeg(), limits.pitch_max);
   map.readAngleInto("roll_max", rightAngleRangeDeg(), limits.roll_max);
   return limits;
@@ -675,12 +682,17 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
       ctx, field,
       {"method", "intervals", "max_iterations", "tolerance", "time_limit_s", "yaw_rate_order",
        "speed_order", "scheme", "shooting_controls", "hessian", "control_effort",
-       "mesh_refinement_rounds", "mesh_refinement_tolerance", "min_clearance_m"});
+       "mesh_refinement_rounds", "mesh_refinement_tolerance", "min_clearance_m", "max_intervals"});
   SolverSpec solver;
   if (const std::optional<Field> method = map.find("method")) {
     solver.method = readEnum<SolverMethod>(ctx, *method, parseSolverMethod, solverMethodNames());
   }
   map.readIntInto("intervals", kMinIntervals, kMaxIntervals, solver.intervals);
+  map.readIntInto("max_intervals", kMinIntervals, kMaxIntervals, solver.max_intervals);
+  if (solver.max_intervals < solver.intervals) {
+    map.fail("max_intervals", "must be >= intervals (" + std::to_string(solver.intervals) +
+                                  "), got " + std::to_string(solver.max_intervals));
+  }
   map.readIntInto("max_iterations", kMinIterations, kMaxIterations, solver.max_iterations);
   map.readIntInto("yaw_rate_order", 1, 8, solver.yaw_rate_order);
   map.readIntInto("speed_order", 1, 8, solver.speed_order);
@@ -751,7 +763,8 @@ RefineSpec parseRefine(const Context& ctx, const Field& field) {
       ctx, field,
       {"method", "interval_length_m", "min_intervals", "max_intervals", "min_clearance_m",
        "limit_margin", "speed_margin", "control_effort", "max_iterations", "time_limit_s",
-       "parametric_max_length_m", "parametric_min_clearance_m"});
+       "parametric_max_length_m", "parametric_min_clearance_m", "coarse_interval_length_m",
+       "endpoint_tolerance_m"});
   RefineSpec refine;
   readChoiceInto(ctx, map, "method", {"auto", "collocation", "shooting", "newton", "ipopt"},
                  refine.method);
@@ -773,6 +786,9 @@ RefineSpec parseRefine(const Context& ctx, const Field& field) {
                      refine.parametric_max_length_m);
   map.readNumberInto("parametric_min_clearance_m", Range::nonNegative(),
                      refine.parametric_min_clearance_m);
+  map.readNumberInto("coarse_interval_length_m", Range::positive(),
+                     refine.coarse_interval_length_m);
+  map.readNumberInto("endpoint_tolerance_m", Range::positive(), refine.endpoint_tolerance_m);
   return refine;
 }
 

@@ -5,12 +5,15 @@
 
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/json_number.hpp"
+#include "terratraj/apps/output_paths.hpp"
 #include "terratraj/apps/plan_command.hpp"
 #include "terratraj/apps/plot_writer.hpp"
+#include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/apps/solve_command.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
+#include "terratraj/ocp/solution_verdict.hpp"
 #include "terratraj/search/taeasl_planner.hpp"
 #include "terratraj/terrain/input_error.hpp"
 #include "terratraj/terrain/obstacle_clusters.hpp"
@@ -18,21 +21,11 @@
 namespace terratraj::apps {
 namespace {
 
-// The largest violation of a refined trajectory: the independent check's or the
-// re-simulation's (null before a re-simulation).
+// The largest limit, table or map violation of a refined trajectory, from the verdict's check
+// (null before a re-simulation).
 nlohmann::json refinedViolation(const search::RefinementResult& r) {
   if (!r.refined_figures) return nullptr;
-  return std::max(r.refined_figures->check.max_violation, r.verified.violation.amount);
-}
-
-// Creates the folder of an output file; InputError naming it when that fails.
-void createOutputDirectory(const std::filesystem::path& file) {
-  if (!file.has_parent_path()) return;
-  std::error_code error;
-  std::filesystem::create_directories(file.parent_path(), error);
-  if (error) {
-    throw InputError("cannot create the folder of '" + file.string() + "': " + error.message());
-  }
+  return ocp::largestLimitViolation(r.verdict.check).first;
 }
 
 }  // namespace
@@ -65,9 +58,10 @@ search::RefinementOptions refinementOptions(const ProblemSpec& problem,
   options.limit_margin = spec.limit_margin;
   options.speed_margin = spec.speed_margin;
   options.transcription.model.control_effort_weight = spec.control_effort;
-  options.transcription.time_limit_s = spec.time_limit_s;
+  options.coarse_interval_length_m = spec.coarse_interval_length_m;
+  options.endpoint_tolerance_m = spec.endpoint_tolerance_m;
+  options.time_limit_s = spec.time_limit_s;  // the whole refinement: solves get what is left
   options.parametric = boundaryValueOptions(problem);  // its method is set per refinement
-  options.parametric.time_limit_s = spec.time_limit_s;
   if (std::optional<std::string> why = search::validateRefinementOptions(options)) {
     throw InputError(problem.source_file.string() + ": refine: " + *why);
   }
@@ -152,9 +146,8 @@ nlohmann::json refineReportJson(const search::RefinementResult& r,
       {"iterations", r.iterations},
       {"max_iterations",
        transcription ? options.transcription.max_iterations : options.parametric.max_iterations},
-      {"time_limit_s", options.transcription.time_limit_s
-                           ? nlohmann::json(*options.transcription.time_limit_s)
-                           : nlohmann::json(nullptr)},
+      {"time_limit_s",
+       options.time_limit_s ? nlohmann::json(*options.time_limit_s) : nlohmann::json(nullptr)},
       {"solve_time_ms", r.solve_time_ms},
       {"intervals", r.intervals},
       {"clearance_constraint_m", r.clearance_used_m},
@@ -179,17 +172,61 @@ nlohmann::json refineReportJson(const search::RefinementResult& r,
          r.refined_figures ? nlohmann::json(r.refined_figures->homotopy) : nlohmann::json(nullptr)},
         {"kept", r.homotopy_kept}}},
       {"cost_ratio", jsonNumber(r.costRatio())},
-      {"file", out && r.verified.ok ? nlohmann::json(out->string()) : nlohmann::json(nullptr)},
+      {"file", out ? nlohmann::json(out->string()) : nlohmann::json(nullptr)},
+      {"returned", r.returned_candidate ? "candidate"
+                   : r.verified.ok      ? "refined"
+                                        : "nothing"},
   };
   json.update(verifiedTrajectoryJson(r.verified));
-  if (r.refined_figures) json["constraint_violation"] = refinedViolation(r);
+  json.update(verdictJson(r.verdict, r.refined_figures.has_value()));
   return json;
 }
 
+namespace {
+
+// The trajectory a refinement returns: the refined one, or the candidate when the refinement
+// ended worse than it (null when neither exists).
+const models::Trajectory* returnedTrajectory(const search::RefinementResult& r) {
+  if (r.returned_candidate) return &r.candidate;
+  return r.verified.ok ? &r.verified.trajectory : nullptr;
+}
+
+void printRefineSummary(const search::RefinementResult& result,
+                        const std::optional<std::filesystem::path>& written,
+                        CommandContext& context) {
+  context.out << ocp::solveStatusName(result.status) << " ("
+              << search::refineMethodName(result.method) << ", " << result.iterations
+              << " iterations, " << result.solve_time_ms << " ms)";
+  if (!result.reason.empty()) context.out << ": " << result.reason;
+  context.out << '\n';
+  if (!result.method_rule.empty()) context.out << "  method      " << result.method_rule << '\n';
+  const auto line = [&](const char* name, const search::TrajectoryFigures& f) {
+    context.out << "  " << name << "cost " << f.cost << ", duration " << f.duration_s << " s, "
+                << f.length_m << " m, max |pitch| " << f.max_abs_pitch << " rad, max |roll| "
+                << f.max_abs_roll << " rad, class '" << f.homotopy << "', re-check "
+                << (f.check.ok() ? "ok" : "VIOLATED") << '\n';
+  };
+  if (result.candidate_figures) line("candidate   ", *result.candidate_figures);
+  if (result.refined_figures) line("refined     ", *result.refined_figures);
+  if (std::isfinite(result.costRatio())) {
+    context.out << "  ratio       " << result.costRatio() << " (refined / candidate cost)\n";
+  }
+  if (written) {
+    context.out << "  trajectory  " << written->string()
+                << (result.returned_candidate ? " (the candidate)" : "") << '\n';
+  }
+}
+
+}  // namespace
+
 int runRefine(const RefineOptions& options, CommandContext& context) {
   ProblemSpec problem = loadProblem(options.problem);
-  const search::RefinementOptions refine = refinementOptions(problem, options.method);
+  search::RefinementOptions refine = refinementOptions(problem, options.method);
+  refine.stop = context.stop;
   const models::Trajectory candidate = models::readTrajectoryCsv(options.candidate);
+  // Every output is checked before the work starts.
+  if (options.out) ensureWritableFile(*options.out, "--out");
+  if (options.plot) ensureWritableFile(*options.plot, "--plot");
   const ProblemScene scene(problem, context);
   const search::PlanningProblem query = planningProblem(problem, scene);
   ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem);
@@ -199,11 +236,13 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
   context.log->info("refining {} ({} samples) on the {} model", options.candidate.string(),
                     candidate.samples.size(), scene.vehicle().name());
   const search::RefinementResult result = refiner.refine(candidate);
-  if (options.out && result.verified.ok) {
-    createOutputDirectory(*options.out);
-    models::writeTrajectoryCsv(result.verified.trajectory, *options.out);
+  const models::Trajectory* returned = returnedTrajectory(result);
+  std::optional<std::filesystem::path> written;
+  if (options.out && returned != nullptr) {
+    models::writeTrajectoryCsv(*returned, *options.out);
+    written = *options.out;
   }
-  nlohmann::json report = refineReportJson(result, refine, options.candidate, options.out);
+  nlohmann::json report = refineReportJson(result, refine, options.candidate, written);
   // A candidate that cannot be used is bad input: the report still says what was measured.
   const bool bad_candidate = result.status == ocp::SolveStatus::kError;
   if (bad_candidate) {
@@ -211,8 +250,8 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
     context.err << "terratraj: error: " << options.candidate.string() << ": " << result.reason
                 << '\n';
   }
+  if (context.stopRequested()) report["stopped_by"] = "interrupt";
   if (options.plot && !bad_candidate) {
-    createOutputDirectory(*options.plot);
     PlotRequest plot;
     plot.title = "refine " + options.candidate.filename().string() + " (" +
                  search::refineMethodName(result.method) + ")";
@@ -224,40 +263,34 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
         options.plot->parent_path() / (options.plot->stem().string() + "-candidate.csv");
     models::writeTrajectoryCsv(result.candidate, derived);
     plot.trajectories.push_back({"candidate", derived, true, 0});
-    if (options.out && result.verified.ok) {
-      plot.trajectories.push_back({"refined", *options.out, false, 0});
-    } else if (result.verified.ok) {
-      const std::filesystem::path refined =
-          options.plot->parent_path() / (options.plot->stem().string() + "-refined.csv");
-      models::writeTrajectoryCsv(result.verified.trajectory, refined);
+    if (result.verified.ok) {
+      // The refined trajectory: --out when it holds it, else a file beside the plot.
+      std::filesystem::path refined;
+      if (written && !result.returned_candidate) {
+        refined = *written;
+      } else {
+        refined = options.plot->parent_path() / (options.plot->stem().string() + "-refined.csv");
+        models::writeTrajectoryCsv(result.verified.trajectory, refined);
+      }
       plot.trajectories.push_back({"refined", refined, false, 0});
     }
     plot.histories.push_back({search::refineMethodName(result.method), result.history, 0});
     plot.frames = plotFrames(frames);
     report["plots"] = writePlots(plot, scene.map(), *options.plot, context).toJson();
   }
+  if (written) {
+    const std::filesystem::path report_file = written->parent_path() / "report.json";
+    nlohmann::json saved = report;
+    saved["version"] = kTerratrajVersion;
+    saved["command"] = "refine";
+    saved["problem"] = problemJson(problem);
+    writeJsonFile(saved, report_file);
+    report["report_file"] = report_file.string();
+  }
   if (context.json) {
     context.out << report.dump(2) << '\n';
   } else {
-    context.out << ocp::solveStatusName(result.status) << " ("
-                << search::refineMethodName(result.method) << ", " << result.iterations
-                << " iterations, " << result.solve_time_ms << " ms)";
-    if (!result.reason.empty()) context.out << ": " << result.reason;
-    context.out << '\n';
-    if (!result.method_rule.empty()) context.out << "  method      " << result.method_rule << '\n';
-    const auto line = [&](const char* name, const search::TrajectoryFigures& f) {
-      context.out << "  " << name << "cost " << f.cost << " s, " << f.length_m << " m, max |pitch| "
-                  << f.max_abs_pitch << " rad, max |roll| " << f.max_abs_roll << " rad, class '"
-                  << f.homotopy << "', re-check " << (f.check.ok() ? "ok" : "VIOLATED") << '\n';
-    };
-    if (result.candidate_figures) line("candidate   ", *result.candidate_figures);
-    if (result.refined_figures) line("refined     ", *result.refined_figures);
-    if (std::isfinite(result.costRatio())) {
-      context.out << "  ratio       " << result.costRatio() << " (refined / candidate cost)\n";
-    }
-    if (options.out && result.verified.ok) {
-      context.out << "  trajectory  " << options.out->string() << '\n';
-    }
+    printRefineSummary(result, written, context);
   }
   if (bad_candidate) return kExitBadInput;
   return result.status == ocp::SolveStatus::kConverged ? kExitSuccess : kExitNotSolved;

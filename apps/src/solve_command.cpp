@@ -11,8 +11,11 @@
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/apps/vehicle_factory.hpp"
+#include "terratraj/apps/verdict_json.hpp"
 #include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
+#include "terratraj/ocp/solution_verdict.hpp"
+#include "terratraj/ocp/transcription_solver.hpp"
 #include "terratraj/terrain/clearance_map.hpp"
 #include "terratraj/terrain/input_error.hpp"
 
@@ -134,6 +137,9 @@ ocp::DirectTranscriptionOptions transcriptionOptions(const ProblemSpec& problem)
     options.hessian = ocp::TranscriptionHessian::kLimitedMemory;
   }
   options.intervals = solver.intervals;
+  // Piecewise-linear controls on Hermite-Simpson intervals: |v'| <= a_max and |omega'| hold
+  // between the points too (the quadratic interpolation of a bang-bang control overshoots).
+  options.linear_controls = true;
   options.max_iterations = solver.max_iterations;
   options.time_limit_s = solver.time_limit_s;
   options.refinement.max_rounds = solver.mesh_refinement_rounds;
@@ -292,31 +298,39 @@ int runTranscription(const SolveOptions& options, const ProblemSpec& problem,
   context.log->info("solving with {} ({} intervals) on the {} model",
                     ocp::transcriptionSchemeName(transcription_options.scheme),
                     transcription_options.intervals, vehicle.name());
-  ocp::TranscriptionSolution solution =
-      ocp::solveDirectTranscription(vehicle, bvp, *guess, transcription_options);
-  const ocp::TranscriptionModel model(vehicle, bvp, transcription_options.model);
-  const ocp::VerifiedTrajectory verified =
-      solution.points.empty() ? ocp::VerifiedTrajectory{}
-                              : ocp::verifyTranscriptionSolution(model, solution, &map);
+  ocp::TranscriptionSolveOptions solve_options;
+  solve_options.transcription = transcription_options;
+  solve_options.criteria = parametric_options.criteria;
+  solve_options.map = &map;
+  solve_options.max_intervals =
+      std::max(problem.solver.max_intervals, transcription_options.intervals);
+  solve_options.time_limit_s = transcription_options.time_limit_s;
+  solve_options.stop = context.stop;
+  ocp::VerifiedTranscription solve = ocp::solveTranscription(vehicle, bvp, *guess, solve_options);
+  ocp::TranscriptionSolution& solution = solve.solution;
+  const ocp::VerifiedTrajectory& verified = solve.verified;
   ocp::SolveResult& result = solution.result;
-  if (result.status == ocp::SolveStatus::kConverged) {
-    const double position = verified.terminal_error.head<2>().norm();
-    const double heading = std::abs(verified.terminal_error.z());
-    if (!verified.ok) {
-      result.status = ocp::SolveStatus::kDiverged;
-      result.reason = "the re-simulation failed: " + verified.message;
-    } else if (position > problem.solver.tolerance_position_m ||
-               heading > problem.solver.tolerance_heading_rad) {
-      result.status = ocp::SolveStatus::kDiverged;
-      result.reason = "Ipopt converged but the re-simulated trajectory ends " +
-                      std::to_string(position) + " m, " + std::to_string(heading) +
-                      " rad from the goal (beyond solver.tolerance): raise solver.intervals "
-                      "or solver.mesh_refinement_rounds";
-    }
-  }
+  result.status = solve.status;
+  result.reason = solve.reason;
+  result.iterations = solve.iterations;
+  result.history = solve.history;
+  result.solve_time_ms = solve.solve_time_ms;
   if (options.out && verified.ok) models::writeTrajectoryCsv(verified.trajectory, *options.out);
   nlohmann::json report =
       transcriptionReportJson(solution, verified, transcription_options, source);
+  report.update(verdictJson(solve.verdict, verified.ok));
+  nlohmann::json rounds = nlohmann::json::array();
+  for (const ocp::TranscriptionRound& r : solve.rounds) {
+    rounds.push_back({{"intervals", r.intervals},
+                      {"speed_margin", r.speed_margin},
+                      {"limit_margin", r.limit_margin},
+                      {"clearance_m", r.clearance_m},
+                      {"status", ocp::solveStatusName(r.status)},
+                      {"reason", r.reason},
+                      {"iterations", r.iterations}});
+  }
+  report["verification_rounds"] = rounds;
+  report["max_intervals"] = solve_options.max_intervals;
   if (options.plot) {
     report["plots"] = plotSolve(options, problem, map, verified, result.history,
                                 report["method"].get<std::string>(), context);
@@ -370,6 +384,7 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
     models::writeTrajectoryCsv(solution.verified.trajectory, *options.out);
   }
   nlohmann::json report = solveReportJson(solution, solve_options);
+  report.update(verdictJson(solution.verdict, solution.verified.ok));
   if (options.plot) {
     report["plots"] = plotSolve(options, problem, map, solution.verified, solution.solver.history,
                                 ocp::boundaryValueMethodName(solve_options.method), context);

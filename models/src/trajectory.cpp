@@ -50,4 +50,9 @@ double Trajectory::planarLength() const {
   return length;
 }
 
+std::string Trajectory::sampleName(std::size_t index) const {
+  if (index < source_lines.size()) return "line " + std::to_string(source_lines[index]);
+  return "row " + std::to_string(index + 1);
+}
+
 }  // namespace terratraj::models

@@ -97,6 +97,7 @@ Trajectory readTrajectoryCsv(std::istream& in, const std::string& source) {
       fail(source, line_number, "t must increase strictly from row to row");
     }
     trajectory.samples.push_back(sample);
+    trajectory.source_lines.push_back(line_number);
   }
   if (trajectory.samples.empty()) fail(source, line_number, "no data rows after the header");
   return trajectory;

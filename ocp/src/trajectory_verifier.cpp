@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "terratraj/models/rover_integrator.hpp"
 #include "terratraj/ocp/parametric_controls.hpp"
@@ -63,6 +64,37 @@ class TranscribedControls final : public models::ControlProfile {
   std::vector<Eigen::Vector2d> node_values_;
 };
 
+// Speeds below this are rest [m/s]: their curvature omega / v is rounding noise.
+constexpr double kRestSpeed = 1e-9;
+
+// The integrator leaves the curvature of a sample at rest (v = 0) undefined (NaN), or computes
+// it from rounding noise; a sample at rest gets v = omega = 0 and the curvature of its nearest
+// sample in motion (0 when none moves), so that every column of the CSV is a number.
+void fillCurvatureAtRest(models::Trajectory& trajectory) {
+  std::vector<models::TrajectorySample>& s = trajectory.samples;
+  for (models::TrajectorySample& sample : s) {
+    if (std::abs(sample.v) < kRestSpeed && std::abs(sample.omega) < kRestSpeed) {
+      sample.v = sample.omega = 0.0;
+      sample.curvature = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (std::isfinite(s[i].curvature)) continue;
+    double value = 0.0;
+    for (std::size_t d = 1; d < s.size(); ++d) {
+      if (i >= d && std::isfinite(s[i - d].curvature)) {
+        value = s[i - d].curvature;
+        break;
+      }
+      if (i + d < s.size() && std::isfinite(s[i + d].curvature)) {
+        value = s[i + d].curvature;
+        break;
+      }
+    }
+    s[i].curvature = value;
+  }
+}
+
 // Re-simulates `controls` for `tf` seconds and checks every sample with `check(sample)`, which
 // folds violations into out.violation. Fills everything else in VerifiedTrajectory.
 template <typename Check>
@@ -83,6 +115,7 @@ VerifiedTrajectory resimulate(const models::TerrainFollowingModel& vehicle,
                        models::uniformSampleTimes(tf, std::max(options.sample_dt, 1e-4)), result,
                        &dwell);
   out.trajectory = result.samples;
+  fillCurvatureAtRest(out.trajectory);
   if (result.status != models::IntegrationStatus::kOk) {
     out.message = std::string("re-simulation: ") + result.message +
                   " at t = " + std::to_string(result.t_reached) + " s";

@@ -7,8 +7,10 @@
 #include <limits>
 #include <sstream>
 
+#include "terratraj/ocp/solution_verdict.hpp"
 #include "terratraj/ocp/transcription_guess.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
+#include "terratraj/ocp/transcription_solver.hpp"
 
 namespace terratraj::search {
 namespace {
@@ -48,12 +50,12 @@ std::optional<std::string> candidateError(const models::Trajectory& candidate,
   for (std::size_t i = 0; i < candidate.samples.size(); ++i) {
     const models::TrajectorySample& s = candidate.samples[i];
     if (!std::isfinite(s.x) || !std::isfinite(s.y)) {
-      return "sample " + std::to_string(i) + ": x, y is not a finite number";
+      return candidate.sampleName(i) + ": x, y is not a finite number";
     }
     if (!geometry.contains({s.x, s.y})) {
-      return "sample " + std::to_string(i) + " at " + formatPoint(s.x, s.y) +
-             " leaves the map (0..." + formatNumber(geometry.width()) + " x 0..." +
-             formatNumber(geometry.height()) + " m, local frame)";
+      return candidate.sampleName(i) + " at " + formatPoint(s.x, s.y) + " leaves the map (0..." +
+             formatNumber(geometry.width()) + " x 0..." + formatNumber(geometry.height()) +
+             " m, local frame)";
     }
     if (std::hypot(s.x - first.x, s.y - first.y) > 1e-6) distinct = true;
   }
@@ -81,7 +83,7 @@ bool fillAttitude(const models::TerrainFollowingModel& vehicle, models::Trajecto
     models::TrajectorySample& s = trajectory.samples[i];
     const models::AttitudeStatus status = vehicle.compute({s.x, s.y, s.heading}, workspace, result);
     if (status != models::AttitudeStatus::kOk) {
-      why = "sample " + std::to_string(i) + " at " + formatPoint(s.x, s.y) +
+      why = trajectory.sampleName(i) + " at " + formatPoint(s.x, s.y) +
             ": the vehicle cannot rest there (" + models::attitudeStatusName(status) + ")";
       return false;
     }
@@ -165,37 +167,6 @@ std::vector<Eigen::Vector2d> polyline(const models::Trajectory& t) {
 constexpr double kShortcutSpacing = 0.5;
 constexpr std::size_t kShortcutWindow = 200;
 
-// Speeds below this are rest [m/s]: their curvature omega / v is rounding noise.
-constexpr double kRestSpeed = 1e-9;
-
-// The integrator leaves the curvature of a sample at rest (v = 0) undefined (NaN), or computes
-// it from rounding noise; a refined trajectory at rest gets v = omega = 0 and the curvature of
-// its nearest sample in motion (0 when none moves), so that every column is a number.
-void fillCurvatureAtRest(models::Trajectory& trajectory) {
-  std::vector<models::TrajectorySample>& s = trajectory.samples;
-  for (models::TrajectorySample& sample : s) {
-    if (std::abs(sample.v) < kRestSpeed && std::abs(sample.omega) < kRestSpeed) {
-      sample.v = sample.omega = 0.0;
-      sample.curvature = std::numeric_limits<double>::quiet_NaN();
-    }
-  }
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (std::isfinite(s[i].curvature)) continue;
-    double value = 0.0;
-    for (std::size_t d = 1; d < s.size(); ++d) {
-      if (i >= d && std::isfinite(s[i - d].curvature)) {
-        value = s[i - d].curvature;
-        break;
-      }
-      if (i + d < s.size() && std::isfinite(s[i + d].curvature)) {
-        value = s[i + d].curvature;
-        break;
-      }
-    }
-    s[i].curvature = value;
-  }
-}
-
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
@@ -235,6 +206,13 @@ std::optional<std::string> validateRefinementOptions(const RefinementOptions& o)
            ")";
   }
   if (!(o.guess_spacing_m > 0.0)) return "guess_spacing_m must be > 0";
+  if (!(o.worse_tolerance >= 0.0) || !std::isfinite(o.worse_tolerance)) {
+    return "worse_tolerance must be a finite number >= 0";
+  }
+  if (!(o.endpoint_tolerance_m > 0.0) || !std::isfinite(o.endpoint_tolerance_m)) {
+    return "endpoint_tolerance_m must be a finite number > 0";
+  }
+  if (o.time_limit_s && !(*o.time_limit_s >= 0.0)) return "time_limit_s must be >= 0";
   if (o.margin_retries < 0) return "margin_retries must be >= 0";
   if (!(o.shortcut_clearance_m >= 0.0) || !std::isfinite(o.shortcut_clearance_m)) {
     return "shortcut_clearance_m must be a finite number >= 0";
@@ -303,10 +281,31 @@ CandidateRefiner::CandidateRefiner(const PlanningProblem& problem,
       bvp_(&bvp),
       frames_(&frames),
       options_(options),
-      clearance_(*problem.map) {}
+      clearance_(*problem.map),
+      candidate_requirements_(requirementsOf(problem)),
+      refined_requirements_(ocp::solveRequirements(*problem.vehicle, bvp,
+                                                   options.parametric.criteria, problem.map)) {}
 
-TrajectoryFigures CandidateRefiner::measure(const models::Trajectory& trajectory,
-                                            const CheckTolerances& tolerances) const {
+double CandidateRefiner::Deadline::secondsLeft() const {
+  if (!limit_s) return std::numeric_limits<double>::infinity();
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return std::max(0.0, *limit_s - elapsed);
+}
+
+bool CandidateRefiner::Deadline::over() const {
+  return (stop != nullptr && stop->load()) || (limit_s && secondsLeft() <= 0.0);
+}
+
+TrajectoryFigures CandidateRefiner::measure(
+    const models::Trajectory& trajectory,
+    const models::TrajectoryRequirements& requirements) const {
+  TrajectoryFigures f = figuresOf(trajectory);
+  f.check = models::checkTrajectory(trajectory, requirements);
+  return f;
+}
+
+TrajectoryFigures CandidateRefiner::figuresOf(const models::Trajectory& trajectory) const {
   TrajectoryFigures f;
   const std::vector<models::TrajectorySample>& s = trajectory.samples;
   const bool dwell = bvp_->cost.kind == ocp::CostKind::kSlopeDwell;
@@ -325,9 +324,68 @@ TrajectoryFigures CandidateRefiner::measure(const models::Trajectory& trajectory
   }
   if (!s.empty()) f.duration_s = s.back().t - s.front().t;
   f.length_m = trajectory.planarLength();
-  f.check = TrajectoryChecker(*problem_, tolerances).check(trajectory, true);
   f.homotopy = frames_->signatureOf(polyline(trajectory)).toString();
   return f;
+}
+
+namespace {
+
+// A candidate must run from the start to the goal: its ends within `tolerance` [m].
+std::optional<std::string> endpointError(const models::Trajectory& candidate,
+                                         const ocp::BoundaryValueProblem& bvp, double tolerance) {
+  const models::TrajectorySample& first = candidate.samples.front();
+  const models::TrajectorySample& last = candidate.samples.back();
+  const double from_start = std::hypot(first.x - bvp.start.x, first.y - bvp.start.y);
+  const double from_goal = std::hypot(last.x - bvp.goal.x, last.y - bvp.goal.y);
+  if (from_start > tolerance) {
+    return "the candidate starts at " + formatPoint(first.x, first.y) + ", " +
+           formatNumber(from_start) + " m from the problem's start " +
+           formatPoint(bvp.start.x, bvp.start.y) +
+           " (refine.endpoint_tolerance_m = " + formatNumber(tolerance) +
+           " m): it is not a candidate for this problem";
+  }
+  if (from_goal > tolerance) {
+    return "the candidate ends at " + formatPoint(last.x, last.y) + ", " + formatNumber(from_goal) +
+           " m from the problem's goal " + formatPoint(bvp.goal.x, bvp.goal.y) +
+           " (refine.endpoint_tolerance_m = " + formatNumber(tolerance) +
+           " m): it is not a candidate for this problem";
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+double CandidateRefiner::candidateCostAtGoal(const TrajectoryFigures& before,
+                                             const RefinementResult& out) const {
+  const models::TrajectorySample& last = out.candidate.samples.back();
+  const double distance = std::hypot(last.x - bvp_->goal.x, last.y - bvp_->goal.y);
+  return before.cost + distance / bvp_->limits.v_max;
+}
+
+bool CandidateRefiner::worseThanCandidate(const TrajectoryFigures& before,
+                                          const RefinementResult& out) const {
+  return out.status == ocp::SolveStatus::kConverged && before.check.ok() && out.refined_figures &&
+         out.refined_figures->cost >
+             candidateCostAtGoal(before, out) * (1.0 + options_.worse_tolerance);
+}
+
+void CandidateRefiner::accept(ocp::SolveStatus status, std::string reason,
+                              models::TrajectoryVerdict verdict, const TrajectoryFigures& before,
+                              RefinementResult& out) const {
+  out.status = status;
+  out.reason = std::move(reason);
+  if (!out.verified.ok) return;
+  out.verdict = std::move(verdict);
+  TrajectoryFigures after = figuresOf(out.verified.trajectory);
+  after.check = out.verdict.check;
+  out.refined_figures = std::move(after);
+  out.homotopy_kept = out.refined_figures->homotopy == before.homotopy;
+  if (out.status != ocp::SolveStatus::kConverged) return;
+  if (!out.homotopy_kept) {
+    out.status = ocp::SolveStatus::kInfeasible;
+    out.reason = "the refined trajectory left the candidate's homotopy class ('" + before.homotopy +
+                 "' -> '" + out.refined_figures->homotopy + "')";
+  }
 }
 
 RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) const {
@@ -344,6 +402,10 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
     return finish(ocp::SolveStatus::kError, "refinement options: " + *why);
   }
   if (std::optional<std::string> why = candidateError(candidate, problem_->map->geometry())) {
+    return finish(ocp::SolveStatus::kError, *why);
+  }
+  if (std::optional<std::string> why =
+          endpointError(candidate, *bvp_, options_.endpoint_tolerance_m)) {
     return finish(ocp::SolveStatus::kError, *why);
   }
 
@@ -364,8 +426,13 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   if (!fillAttitude(*problem_->vehicle, out.candidate, why)) {
     return finish(ocp::SolveStatus::kError, "the candidate: " + why);
   }
-  out.candidate_figures = measure(out.candidate, CheckTolerances{});
+  const auto measure_started = std::chrono::steady_clock::now();
+  out.candidate_figures = measure(out.candidate, candidate_requirements_);
   const TrajectoryFigures& before = *out.candidate_figures;
+  // Time kept back from the solvers for the final re-simulation and check (about what the
+  // candidate's measurement took, twice, plus a margin).
+  const double reserve_s =
+      2.0 * millisecondsSince(measure_started) / 1000.0 + 0.005 + 1e-6 * before.duration_s;
 
   // A wiggly candidate (a PRM's first solution, with loops) starts the optimiser from its
   // shortcut path instead, when that keeps the class: loops and detours cost iterations and
@@ -388,66 +455,74 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   // 2. Choose the method.
   out.method = chooseRefineMethod(options_, before.length_m, before.min_clearance_m,
                                   curvatureSignChanges(out.candidate), out.method_rule);
+  const Deadline solver_deadline{
+      started,
+      options_.time_limit_s
+          ? std::optional<double>(std::max(0.0, *options_.time_limit_s - reserve_s))
+          : std::nullopt,
+      options_.stop};
 
-  // 3. Solve; with kAuto, a failed parametric solve falls back to collocation.
-  const auto accept = [&](ocp::SolveStatus status, std::string reason) {
-    out.status = status;
-    out.reason = std::move(reason);
-    if (!out.verified.ok) return;
-    if (!out.refined_figures) {  // transcribe() measures what it accepts
-      fillCurvatureAtRest(out.verified.trajectory);
-      out.refined_figures = measure(out.verified.trajectory, options_.check);
-    }
-    const TrajectoryFigures& after = *out.refined_figures;
-    out.homotopy_kept = after.homotopy == before.homotopy;
-    if (out.status != ocp::SolveStatus::kConverged) return;
-    if (!after.check.ok()) {
-      out.status = ocp::SolveStatus::kInfeasible;
-      out.reason = "the independent re-check of the refined trajectory: " + after.check.summary();
-    } else if (!out.homotopy_kept) {
-      out.status = ocp::SolveStatus::kInfeasible;
-      out.reason = "the refined trajectory left the candidate's homotopy class ('" +
-                   before.homotopy + "' -> '" + after.homotopy + "')";
-    }
-  };
-
+  // 3. Solve; with kAuto, a parametric solve that fails or ends worse than the candidate falls
+  // back to collocation.
   if (out.method == RefineMethod::kNewton || out.method == RefineMethod::kIpopt) {
-    // A linear speed polynomial cannot leave and return to rest: a cubic can.
+    // The speed free to rise and fall: a cubic speed polynomial at least (a linear one fixes
+    // the speed profile between the end speeds).
     ocp::BoundaryValueProblem parametric = *bvp_;
-    if (parametric.start.v == 0.0 && parametric.goal.v == 0.0 && parametric.orders.speed < 3) {
-      parametric.orders.speed = 3;
-    }
+    parametric.orders.speed = std::max(parametric.orders.speed, 3);
     ocp::BoundaryValueOptions settings = options_.parametric;
     settings.method = out.method == RefineMethod::kNewton ? ocp::BoundaryValueMethod::kNewton
                                                           : ocp::BoundaryValueMethod::kIpopt;
+    if (solver_deadline.limit_s) settings.time_limit_s = solver_deadline.secondsLeft();
     out.parametric =
         ocp::solveBoundaryValue(*problem_->vehicle, parametric, settings, problem_->map);
     out.verified = out.parametric->verified;
     out.history = out.parametric->solver.history;
     out.iterations = out.parametric->solver.iterations;
-    accept(out.parametric->status, out.parametric->reason);
-    if (out.status == ocp::SolveStatus::kConverged || options_.method != RefineMethod::kAuto) {
-      return finish(out.status, out.reason);
+    accept(out.parametric->status, out.parametric->reason, out.parametric->verdict, before, out);
+    const bool worse = worseThanCandidate(before, out);
+    if ((out.status == ocp::SolveStatus::kConverged && !worse) ||
+        options_.method != RefineMethod::kAuto || solver_deadline.over()) {
+      return finishRefinement(before, out, started);
     }
-    out.method_rule += "; ipopt ended " + std::string(ocp::solveStatusName(out.status)) + " (" +
-                       out.reason + "), so collocation";
+    out.method_rule +=
+        "; ipopt ended " +
+        std::string(worse ? "worse than the candidate" : ocp::solveStatusName(out.status)) +
+        (out.reason.empty() ? "" : " (" + out.reason + ")") + ", so collocation";
     out.method = RefineMethod::kCollocation;
     out.refined_figures.reset();
     out.parametric.reset();
   }
 
-  transcribe(*guess, before, clearance_, out);
-  accept(out.status, out.reason);
+  transcribe(*guess, before, clearance_, solver_deadline, out);
   // Interior-point iterates may pass through a small obstacle: once the class is lost, solve
   // again from the candidate inside a corridor around it, which the clearance constraint keeps.
-  if (out.refined_figures && !out.homotopy_kept && options_.corridor_radius_m > 0.0) {
+  if (out.refined_figures && !out.homotopy_kept && options_.corridor_radius_m > 0.0 &&
+      !solver_deadline.over()) {
     const terrain::ClearanceMap corridor(corridorMap(out.candidate));
     out.corridor_radius_m = options_.corridor_radius_m;
     out.refined_figures.reset();
-    transcribe(candidate_guess, before, corridor, out);
-    accept(out.status, out.reason);
+    transcribe(candidate_guess, before, corridor, solver_deadline, out);
   }
-  return finish(out.status, out.reason);
+  return finishRefinement(before, out, started);
+}
+
+RefinementResult& CandidateRefiner::finishRefinement(
+    const TrajectoryFigures& before, RefinementResult& out,
+    std::chrono::steady_clock::time_point started) const {
+  // A refinement worse than its feasible candidate is not converged: the candidate is the
+  // result.
+  if (worseThanCandidate(before, out)) {
+    out.status = ocp::SolveStatus::kDiverged;
+    out.returned_candidate = true;
+    out.reason = "the refinement ended at cost " + formatNumber(out.refined_figures->cost) +
+                 ", worse than the feasible candidate's " + formatNumber(before.cost) +
+                 " (credited with its distance to the exact goal at v_max: " +
+                 formatNumber(candidateCostAtGoal(before, out)) + ", tolerance " +
+                 formatNumber(100.0 * options_.worse_tolerance) +
+                 " %); a worse local optimum: the candidate is returned";
+  }
+  out.solve_time_ms = millisecondsSince(started);
+  return out;
 }
 
 terrain::ElevationMap CandidateRefiner::corridorMap(const models::Trajectory& candidate) const {
@@ -523,9 +598,11 @@ std::vector<Eigen::Vector2d> CandidateRefiner::shortcutPath(
 
 void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
                                   const TrajectoryFigures& before,
-                                  const terrain::ClearanceMap& clearance,
+                                  const terrain::ClearanceMap& clearance, const Deadline& deadline,
                                   RefinementResult& out) const {
-  ocp::DirectTranscriptionOptions transcription = options_.transcription;
+  ocp::TranscriptionSolveOptions solve;
+  ocp::DirectTranscriptionOptions& transcription = solve.transcription;
+  transcription = options_.transcription;
   if (out.method == RefineMethod::kShooting) {
     transcription.scheme = ocp::TranscriptionScheme::kMultipleShooting;
   } else if (transcription.scheme == ocp::TranscriptionScheme::kMultipleShooting) {
@@ -539,128 +616,76 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
   transcription.intervals =
       std::clamp(static_cast<int>(std::ceil(length / options_.interval_length_m)),
                  options_.min_intervals, options_.max_intervals);
-  const bool has_obstacles = clearance_.hasImpassableCells();
-  // A trajectory that clips a lethal cell between its points is solved again with at least half
-  // a cell of clearance (capped by min_clearance_m): the bilinear distance transform rounds a
-  // lethal cell's corners.
-  const double clearance_floor =
-      std::min(options_.min_clearance_m, 0.5 * problem_->map->geometry().cell);
-  if (has_obstacles) {
+  // The clearance constraint keeps the optimiser off impassable cells; a trajectory that clips
+  // one between its points is solved again with at least half a cell of clearance (capped by
+  // min_clearance_m): the bilinear distance transform rounds a lethal cell's corners.
+  if (clearance_.hasImpassableCells()) {
     out.clearance_used_m =
         std::max(0.0, std::min(options_.min_clearance_m, 0.5 * before.min_clearance_m));
     transcription.model.clearance = {&clearance, out.clearance_used_m};
+    solve.clearance_floor =
+        std::min(options_.min_clearance_m, 0.5 * problem_->map->geometry().cell);
   }
-  // Verified against the true limits, and against lethal cells only (clearance >= 0) rather
-  // than the clearance the solver kept.
-  ocp::TranscriptionModelOptions verification = transcription.model;
-  verification.clearance.min_clearance = 0.0;
-  const ocp::TranscriptionModel model(*problem_->vehicle, *bvp_, verification);
-  const ocp::ConvergenceCriteria& criteria = options_.parametric.criteria;
-
-  // Solved with the limits tightened by the margins; a solution whose re-simulation still
-  // breaks a limit between the points is solved again from itself, with twice the intervals,
-  // then with wider margins.
-  double speed_margin = options_.speed_margin, limit_margin = options_.limit_margin;
-  const auto tighten = [&]() {
-    ocp::BoundaryValueProblem tightened = *bvp_;
-    tightened.limits.v_max *= 1.0 - speed_margin;
-    tightened.limits.omega_max *= 1.0 - speed_margin;
-    for (double* limit : {&tightened.limits.kappa_max, &tightened.limits.sigma_max,
-                          &tightened.limits.pitch_max, &tightened.limits.roll_max}) {
-      *limit *= 1.0 - limit_margin;
-    }
-    return tightened;
-  };
-  const auto record = [&](const ocp::TranscriptionSolution& solution) {
-    for (ocp::IterationRecord r : solution.result.history) {
-      r.iteration += out.iterations;
-      out.history.push_back(r);
-    }
-    out.iterations += solution.result.iterations;
-  };
-  ocp::TranscriptionGuess start = guess;
+  solve.criteria = options_.parametric.criteria;
+  solve.map = problem_->map;
+  solve.speed_margin = options_.speed_margin;
+  solve.limit_margin = options_.limit_margin;
+  solve.max_rounds = options_.margin_retries;
+  solve.max_intervals = options_.max_intervals;
+  solve.stop = deadline.stop;
   out.history.clear();
+  out.iterations = 0;
   // A coarse mesh first for a wiggly candidate (one whose shortcut guess is in use): it is
   // straightened there at a fraction of the cost, and the fine mesh starts from a smooth guess.
   // A near-optimal candidate goes straight to the fine mesh: at 1 m intervals the clearance
   // held only at the points let a TAEASL route settle 2 % longer, round an unframed obstacle.
+  ocp::TranscriptionGuess start = guess;
   const int coarse_intervals = std::clamp(
       static_cast<int>(std::ceil(length / options_.coarse_interval_length_m)),
       std::min(options_.min_intervals, transcription.intervals), transcription.intervals);
   if (out.guess_shortcut_m > 0.0 && coarse_intervals < transcription.intervals / 2) {
     ocp::DirectTranscriptionOptions coarse = transcription;
     coarse.intervals = coarse_intervals;
-    const ocp::TranscriptionSolution solution =
-        ocp::solveDirectTranscription(*problem_->vehicle, tighten(), start, coarse);
-    record(solution);
+    if (deadline.limit_s) coarse.time_limit_s = deadline.secondsLeft();
+    const ocp::TranscriptionSolution solution = ocp::solveDirectTranscription(
+        *problem_->vehicle,
+        [&] {
+          ocp::BoundaryValueProblem tightened = *bvp_;
+          tightened.limits.v_max *= 1.0 - options_.speed_margin;
+          tightened.limits.omega_max *= 1.0 - options_.speed_margin;
+          return tightened;
+        }(),
+        start, coarse);
+    out.history = solution.result.history;
+    out.iterations = solution.result.iterations;
     out.coarse_intervals = coarse_intervals;
     out.coarse_status = solution.result.status;
     if (solution.result.status == ocp::SolveStatus::kConverged) start = solution.asGuess();
   }
-  bool doubled = false;
-  for (int round = 0; round <= options_.margin_retries; ++round) {
-    out.refined_figures.reset();  // each round's solution is measured anew
-    const ocp::BoundaryValueProblem tightened = tighten();
-    out.speed_margin_used = speed_margin;
-    out.limit_margin_used = limit_margin;
-    out.margin_rounds = round + 1;
-    out.transcription =
-        ocp::solveDirectTranscription(*problem_->vehicle, tightened, start, transcription);
-    const ocp::TranscriptionSolution& solution = *out.transcription;
-    out.intervals = static_cast<int>(solution.mesh.size()) - 1;
-    record(solution);
-    out.verified = solution.points.empty()
-                       ? ocp::VerifiedTrajectory{}
-                       : ocp::verifyTranscriptionSolution(model, solution, problem_->map);
-    out.status = solution.result.status;
-    out.reason = solution.result.reason;
-    if (out.status != ocp::SolveStatus::kConverged) return;
-    const double position = out.verified.terminal_error.head<2>().norm();
-    const double heading = std::abs(out.verified.terminal_error.z());
-    if (!out.verified.ok) {
-      out.status = ocp::SolveStatus::kDiverged;
-      out.reason = "the re-simulation failed: " + out.verified.message;
-      return;
-    }
-    if (position > criteria.position_m || heading > criteria.heading_rad) {
-      out.status = ocp::SolveStatus::kDiverged;
-      out.reason = "the re-simulated trajectory ends " + formatNumber(position) + " m, " +
-                   formatNumber(heading) + " rad from the goal (tolerance " +
-                   formatNumber(criteria.position_m) + " m, " + formatNumber(criteria.heading_rad) +
-                   " rad): shorten refine.interval_length_m";
-      return;
-    }
-    // The independent checker too (it reads the curvature column, where the solver's
-    // |omega| <= kappa_max v is loosest: near rest).
-    std::string limit = out.verified.violation.limit;
-    if (out.verified.violation.amount <= options_.parametric.limit_tolerance) {
-      fillCurvatureAtRest(out.verified.trajectory);
-      out.refined_figures = measure(out.verified.trajectory, options_.check);
-      const CheckReport& check = out.refined_figures->check;
-      if (check.ok()) return;
-      limit = check.violations.front().limit;
-      out.status = ocp::SolveStatus::kInfeasible;
-      out.reason = "the independent re-check of the refined trajectory: " + check.summary();
-    } else {
-      out.status = ocp::SolveStatus::kInfeasible;
-      out.reason = "the re-simulated trajectory breaks " + limit + " by " +
-                   formatNumber(out.verified.violation.amount) + " between the points (margins " +
-                   formatNumber(speed_margin) + ", " + formatNumber(limit_margin) + ")";
-    }
-    start = solution.asGuess();
-    // A clipped lethal cell: more clearance. Otherwise the overshoot between points shrinks
-    // with the interval: first twice the intervals, then wider margins (which cost time).
-    if (has_obstacles && (limit == "lethal" || limit == "clearance") &&
-        out.clearance_used_m < clearance_floor) {
-      out.clearance_used_m = clearance_floor;
-      transcription.model.clearance.min_clearance = clearance_floor;
-    } else if (!doubled && 2 * transcription.intervals <= options_.max_intervals) {
-      transcription.intervals *= 2;
-      doubled = true;
-    } else {
-      speed_margin = std::min(0.25, 4.0 * speed_margin);
-      limit_margin = std::min(0.25, 2.0 * limit_margin);
-    }
+  if (deadline.limit_s) solve.time_limit_s = deadline.secondsLeft();
+  ocp::VerifiedTranscription result =
+      ocp::solveTranscription(*problem_->vehicle, *bvp_, start, solve);
+  for (ocp::IterationRecord r : result.history) {
+    r.iteration += out.iterations;
+    out.history.push_back(r);
+  }
+  out.iterations += result.iterations;
+  out.transcription = result.solution;
+  out.intervals = static_cast<int>(result.solution.mesh.size()) - 1;
+  out.margin_rounds = static_cast<int>(result.rounds.size());
+  if (!result.rounds.empty()) {
+    out.speed_margin_used = result.rounds.back().speed_margin;
+    out.limit_margin_used = result.rounds.back().limit_margin;
+    out.clearance_used_m = result.rounds.back().clearance_m;
+  }
+  out.verified = std::move(result.verified);
+  out.refined_figures.reset();
+  accept(result.status, result.reason, std::move(result.verdict), before, out);
+  if (out.verdict.failure == models::VerdictFailure::kMissesGoal &&
+      out.status == ocp::SolveStatus::kDiverged && out.intervals < options_.max_intervals) {
+    out.reason += ": shorten refine.interval_length_m";
+  } else if (out.verdict.failure == models::VerdictFailure::kMissesGoal) {
+    out.reason += " (refine.max_intervals)";
   }
 }
 

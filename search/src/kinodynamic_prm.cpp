@@ -1,5 +1,7 @@
 #include "terratraj/search/kinodynamic_prm.hpp"
 
+#include "terratraj/search/plan_verdict.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -334,6 +336,7 @@ PlanResult KinodynamicPrm::solve(TerminationCondition condition) {
     result.status = PlanStatus::kNoSolution;
     result.reason = stop_reason;
   }
+  applyPlanVerdict(*problem_, result);
   result.planning_time_ms = elapsed_ms();
   return result;
 }

@@ -1,5 +1,7 @@
 #include "terratraj/search/lattice_planner.hpp"
 
+#include "terratraj/search/plan_verdict.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,6 +31,7 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) const {
   PlanResult result;
   const LatticeGraph& graph = *graph_;
   const auto finish = [&](PlanResult& r) -> PlanResult {
+    applyPlanVerdict(graph.problem(), r);
     r.planning_time_ms = millisecondsSince(started);
     return r;
   };
@@ -205,10 +208,7 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) const {
     text << "no path within the termination condition (" << expansions << " expansions)";
     result.reason = text.str();
   } else {
-    std::ostringstream text;
-    text << "goal unreachable: the search exhausted the lattice (" << nodes.size()
-         << " states reached from the start)";
-    result.reason = text.str();
+    result.reason = detail::exhaustedLatticeReason(graph, nodes.size());
   }
   return finish(result);
 }

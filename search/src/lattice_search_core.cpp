@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace terratraj::search::detail {
 
@@ -42,6 +43,20 @@ std::vector<LatticeStep> reconstructPath(const std::vector<SearchNode>& nodes, s
   }
   std::reverse(path.begin(), path.end());
   return path;
+}
+
+std::string exhaustedLatticeReason(const LatticeGraph& graph, std::size_t states) {
+  std::ostringstream text;
+  const LatticeSpec& lattice = graph.lattice();
+  text << "no path on this lattice: the search exhausted every state its primitives reach from "
+          "the start ("
+       << states << " states; " << graph.primitives().size() << " primitives at "
+       << graph.primitives().generation.speed << " m/s, spacing " << lattice.resolution << " m, "
+       << lattice.heading_count
+       << " headings). This is a limit of the lattice, not a proof that the goal is "
+          "unreachable: try planner.kind prm, a finer planner.lattice_resolution_m, more "
+          "planner.heading_count, or larger goal tolerances";
+  return text.str();
 }
 
 }  // namespace terratraj::search::detail

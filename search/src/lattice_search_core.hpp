@@ -103,6 +103,11 @@ inline std::int32_t findOrAddNode(FlatHashMap<std::int32_t>& index, std::vector<
 }
 
 /// The path from the start to `node` as steps.
+/// Why a lattice search that exhausted every reachable state found no path: not a proof that the
+/// goal is unreachable, only that this lattice (its primitives, spacing, headings, speed) does
+/// not reach it; names the settings to change.
+std::string exhaustedLatticeReason(const LatticeGraph& graph, std::size_t states);
+
 std::vector<LatticeStep> reconstructPath(const std::vector<SearchNode>& nodes, std::int32_t node);
 
 }  // namespace terratraj::search::detail

@@ -1,5 +1,8 @@
 #include "terratraj/search/taeasl_planner.hpp"
 
+#include "terratraj/search/plan_verdict.hpp"
+#include "terratraj/search/trajectory_checker.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -189,8 +192,14 @@ PlanResult TaeaslPlanner::solve(TerminationCondition termination) const {
   bool stopped = false;
   bool exhausted = false;
   HomotopySignature signature;
+  // Once a class has reached the goal, the search stops at this share of the time limit: the
+  // rest builds and checks the trajectories within the limit.
+  constexpr double kSearchShare = 0.85;
+  const double search_limit_s = kSearchShare * termination.timeLimitSeconds();
   while (true) {
-    if ((expansions & 15u) == 0 && termination.shouldStop(expansions, false)) {
+    if ((expansions & 15u) == 0 &&
+        (termination.shouldStop(expansions, false) ||
+         (result.first_solution_ms && termination.elapsedSeconds() >= search_limit_s))) {
       stopped = true;
       break;
     }
@@ -283,12 +292,17 @@ PlanResult TaeaslPlanner::solve(TerminationCondition termination) const {
             classes[a].signature < classes[b].signature);
   });
   std::string last_failure;
+  const models::TrajectoryRequirements requirements = requirementsOf(graph.problem());
+  std::size_t built = 0;
   for (std::int32_t c : found) {
     if (static_cast<int>(result.solutions.size()) >= options_.homotopy_classes) break;
+    // Past the time limit only the best class is still built: the limit holds.
+    if (!result.solutions.empty() && termination.timeUp()) break;
     const HomotopyClass& k = classes[c];
     std::string why;
     std::optional<LatticeTrajectory> trajectory =
         graph.trajectory(detail::reconstructPath(nodes, k.best_goal), &why);
+    ++built;
     if (!trajectory) {
       last_failure = k.signature.toString() + ": " + why;
       continue;
@@ -301,9 +315,12 @@ PlanResult TaeaslPlanner::solve(TerminationCondition termination) const {
     solution.homotopy = k.signature.toString();
     solution.proven_optimal = provable && (k.final || exhausted);
     solution.found_ms = k.found_ms;
-    result.cost_history.push_back({k.found_ms, solution.cost_s});
-    result.solutions.push_back(std::move(solution));
+    if (admitSolution(requirements, std::move(solution), result)) {
+      result.cost_history.push_back({k.found_ms, result.solutions.back().cost_s});
+    }
   }
+  stats.classes_found = found.size();
+  stats.classes_built = built;
   std::sort(result.cost_history.begin(), result.cost_history.end(),
             [](const CostSample& a, const CostSample& b) { return a.time_ms < b.time_ms; });
   stats.expansions = expansions;
@@ -313,19 +330,15 @@ PlanResult TaeaslPlanner::solve(TerminationCondition termination) const {
   result.statistics.iterations = expansions;
   result.statistics.attempts = stats.edge_evaluations;
   result.statistics.trapped = stats.invalid_edges;
+  concludePlan(result);
   if (!result.solutions.empty()) {
-    result.status = PlanStatus::kSolved;
-    result.best_cost_s = result.solutions.front().cost_s;
     result.first_solution_cost_s = result.cost_history.front().cost_s;
-    result.trajectory = result.solutions.front().trajectory;
-    result.length_m = result.solutions.front().length_m;
+  } else if (!result.rejected.empty()) {
+    // concludePlan() said why.
   } else if (!last_failure.empty()) {
     result.reason = "the paths found have no trajectory: " + last_failure;
   } else if (exhausted) {
-    std::ostringstream text;
-    text << "goal unreachable: the search exhausted the lattice (" << nodes.size() << " states in "
-         << classes.size() << " homotopy classes)";
-    result.reason = text.str();
+    result.reason = detail::exhaustedLatticeReason(graph, nodes.size());
   } else {
     std::ostringstream text;
     text << "no path within the termination condition (" << expansions << " expansions)";

@@ -169,7 +169,7 @@ TEST_F(CliTest, CheckReadsAProblemAndItsTerrain) {
         "goal: {x: 2, y: 1, heading: 0}\nvehicle:\n  limits: {v_max: -1}\n");
   const CliResult bad = run({"check", path("bad_key.yaml"), "--json"});
   EXPECT_EQ(bad.status, kExitBadInput);
-  EXPECT_THAT(bad.err, HasSubstr("vehicle.limits.v_max: must be > 0"));
+  EXPECT_THAT(bad.err, HasSubstr("vehicle.limits.v_max: must be in [0.01, 50] m/s"));
   EXPECT_THAT(nlohmann::json::parse(bad.out)["error"].get<std::string>(),
               HasSubstr("bad_key.yaml:6"));
 
@@ -183,13 +183,13 @@ TEST_F(CliTest, CheckReadsAProblemAndItsTerrain) {
 
 TEST_F(CliTest, CheckOnARealDemInWorldCoordinates) {
   write("gully.yaml", "terrain:\n  file: " + sharedData("west_bijou_gully.asc") +
-                          "\n  frame: world\nstart: {x: 559770, y: 4380350, heading_deg: 90}\n"
-                          "goal: {x: 559770, y: 4380400, heading_deg: 90}\n");
+                          "\n  frame: world\nstart: {x: 559727, y: 4380460, heading_deg: 0}\n"
+                          "goal: {x: 559765, y: 4380466, heading_deg: 10}\n");
   const CliResult r = run({"check", path("gully.yaml"), "--json"});
   ASSERT_EQ(r.status, kExitSuccess) << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
-  EXPECT_NEAR(json["problem"]["start"]["x"].get<double>(), 65.0, 1e-6);  // now local
-  EXPECT_NEAR(json["problem"]["start"]["y"].get<double>(), 130.0, 1e-6);
+  EXPECT_NEAR(json["problem"]["start"]["x"].get<double>(), 22.0, 1e-6);  // now local
+  EXPECT_NEAR(json["problem"]["start"]["y"].get<double>(), 240.0, 1e-6);
 }
 
 TEST_F(CliTest, LutBuildAndCheckAgreeWithAHandComputation) {

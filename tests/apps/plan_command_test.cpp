@@ -176,7 +176,7 @@ TEST_F(PlanCommandTest, BadInputsExitWith2AndNameTheCulprit) {
   std::string tight = yaml;
   tight.replace(tight.find("pitch_max_deg: 25, roll_max_deg: 25"), 35,
                 "pitch_max_deg: 0.5, roll_max_deg: 0.5");
-  expectBad(plan(tight), "exceeds");
+  expectBad(plan(tight), "beyond vehicle.limits.pitch_max_deg");
   expectBad(plan(problemYaml(kHills, "{x: 2.4, y: 12.0, heading_deg: 0, v: 3.0}", kGoal)), "v_max");
   expectBad(
       plan(problemYaml(kHills, "{x: 2.4, y: 12.0, heading_deg: 0, v: 0.0, omega: 0.5}", kGoal)),

@@ -341,7 +341,8 @@ vehicle:
   limits:
     v_max:      -1
 )";
-  EXPECT_EQ(parseError(yaml), "problem.yaml:7:17: vehicle.limits.v_max: must be > 0 (got -1)");
+  EXPECT_EQ(parseError(yaml),
+            "problem.yaml:7:17: vehicle.limits.v_max: must be in [0.01, 50] m/s (got -1)");
 }
 
 TEST(ProblemLoader, MissingKeyPointsAtParentMap) {
@@ -510,13 +511,14 @@ TEST(ProblemLoader, EmptyObstaclesRejected) {
 
 TEST(ProblemLoader, OutOfRangeValues) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {minimalWith("vehicle: {limits: {a_max: 0}}\n"), "vehicle.limits.a_max: must be > 0 (got 0)"},
+      {minimalWith("vehicle: {limits: {a_max: 0}}\n"),
+       "vehicle.limits.a_max: must be in [0.001, 100] m/s^2 (got 0)"},
       {minimalWith("vehicle: {limits: {omega_max: -2}}\n"),
-       "vehicle.limits.omega_max: must be > 0"},
+       "vehicle.limits.omega_max: must be in [0.001, 100] rad/s"},
       {minimalWith("vehicle: {limits: {kappa_max: 0.0}}\n"),
-       "vehicle.limits.kappa_max: must be > 0"},
+       "vehicle.limits.kappa_max: must be in [0.001, 1000] 1/m"},
       {minimalWith("vehicle: {limits: {sigma_max: -0.1}}\n"),
-       "vehicle.limits.sigma_max: must be > 0"},
+       "vehicle.limits.sigma_max: must be in [0.0001, 10000] 1/(m s)"},
       {minimalWith("vehicle: {limits: {pitch_max_deg: 95}}\n"),
        "vehicle.limits.pitch_max_deg: must be in (0, 90) deg (got 95)"},
       {minimalWith("vehicle: {limits: {roll_max_deg: 0}}\n"),

@@ -223,13 +223,13 @@ TEST(CandidateRefiner, UnusableCandidatesAreErrorsNamingTheSample) {
 
   const RefinementResult off = refiner.refine(xyPath({{4.0, 8.0}, {7.0, 30.0}, {10.0, 8.0}}));
   EXPECT_EQ(off.status, ocp::SolveStatus::kError);
-  EXPECT_THAT(off.reason, HasSubstr("sample 1"));
+  EXPECT_THAT(off.reason, HasSubstr("row 2"));
   EXPECT_THAT(off.reason, HasSubstr("leaves the map"));
 
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const RefinementResult not_finite = refiner.refine(xyPath({{4.0, 8.0}, {nan, 8.0}}));
   EXPECT_EQ(not_finite.status, ocp::SolveStatus::kError);
-  EXPECT_THAT(not_finite.reason, HasSubstr("sample 1"));
+  EXPECT_THAT(not_finite.reason, HasSubstr("row 2"));
 
   RefinementOptions bad;
   bad.interval_length_m = 0.0;

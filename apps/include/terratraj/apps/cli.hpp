@@ -1,6 +1,7 @@
 #pragma once
 // The `terratraj` command-line front end, callable in-process (tests) as well as from main().
 
+#include <atomic>
 #include <iosfwd>
 
 namespace terratraj::apps {
@@ -15,7 +16,9 @@ enum ExitStatus : int {
 };
 
 /// Runs one command line. Results go to `out` (with --json, exactly one JSON object), messages
-/// and progress to `err`. Never throws; returns an ExitStatus.
-int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err);
+/// and progress to `err`. `stop` (optional) is polled by long commands: when it becomes true
+/// they stop and write what they have. Never throws; returns an ExitStatus.
+int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
+           const std::atomic<bool>* stop = nullptr);
 
 }  // namespace terratraj::apps

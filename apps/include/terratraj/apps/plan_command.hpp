@@ -14,6 +14,7 @@
 
 #include "terratraj/apps/command_context.hpp"
 #include "terratraj/apps/problem_spec.hpp"
+#include "terratraj/apps/verdict_json.hpp"
 #include "terratraj/search/plan_result.hpp"
 #include "terratraj/search/trajectory_checker.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
@@ -62,8 +63,6 @@ struct PlanReportInfo {
   std::vector<search::CheckReport> checks;          ///< each solution's independent re-check
   nlohmann::json extra = nlohmann::json::object();  ///< more top-level keys (lattice, frames)
 };
-/// An independent re-check as JSON: {ok, constraint_violation, violated_limits}.
-nlohmann::json checkReportJson(const search::CheckReport& check);
 
 /// The contract's plan report (status, planner, time_limit_s, first_solution_ms,
 /// planning_time_ms, nodes, trapped_fraction, solutions[{cost_s, length_m, homotopy, file}])

@@ -192,7 +192,9 @@ struct CostSpec {
 /// `solver`: the boundary-value solver and its stopping rules.
 struct SolverSpec {
   SolverMethod method = SolverMethod::kNewton;
-  int intervals = 40;                          ///< shooting / collocation intervals, >= 2
+  int intervals = 40;  ///< shooting / collocation intervals, >= 2
+  /// The verification rounds double the intervals up to this many, >= intervals.
+  int max_intervals = 800;
   int max_iterations = 100;                    ///< >= 1
   double tolerance_position_m = 0.001;         ///< terminal position error [m], > 0
   double tolerance_heading_rad = 0.001;        ///< terminal heading error [rad], > 0
@@ -253,6 +255,10 @@ struct RefineSpec {
   double parametric_max_length_m =
       10.0;  ///< auto: polynomial controls only up to this length [m], >= 0
   double parametric_min_clearance_m = 3.0;  ///< auto: ... and this far from obstacles [m], >= 0
+  /// A wiggly candidate is first solved on a coarse mesh of one interval per this length [m], > 0.
+  double coarse_interval_length_m = 1.0;
+  /// A candidate must start and end within this distance of the start and goal [m], > 0.
+  double endpoint_tolerance_m = 0.5;
 };
 /// The whole problem file.
 struct ProblemSpec {

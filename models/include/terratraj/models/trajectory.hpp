@@ -39,10 +39,15 @@ struct Trajectory {
   std::vector<TrajectorySample> samples;
   std::array<bool, kTrajectoryColumnCount> has_column{};  ///< indexed by TrajectoryColumn
   std::vector<std::string> ignored_columns;  ///< CSV columns read but not of the contract
+  /// The file line of each sample when read from a CSV (the header is line 1); empty otherwise.
+  std::vector<std::size_t> source_lines;
 
   bool has(TrajectoryColumn column) const { return has_column[static_cast<std::size_t>(column)]; }
   /// Sum of the horizontal distances between consecutive samples [m].
   double planarLength() const;
+  /// Where sample `index` is, for messages: "line 14" (its file line, when read from a CSV) or
+  /// "row 13" (the data row counted from 1).
+  std::string sampleName(std::size_t index) const;
 };
 
 }  // namespace terratraj::models

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "terratraj/models/terrain_following_model.hpp"
+#include "terratraj/models/trajectory_verdict.hpp"
 #include "terratraj/ocp/boundary_value_problem.hpp"
 #include "terratraj/ocp/initial_guess.hpp"
 #include "terratraj/ocp/parametric_trajectory_model.hpp"
@@ -54,13 +55,17 @@ struct BoundaryValueSolution {
   SolveResult solver;                        ///< the solver's own account
   InitialGuess initial_guess;
   VerifiedTrajectory verified;        ///< the re-simulation of solver.q (ok false if not possible)
+  models::TrajectoryVerdict verdict;  ///< the independent check of verified.trajectory
   double total_time_ms = 0.0;         ///< initial guess + solver [ms]
   double verification_time_ms = 0.0;  ///< the re-simulation [ms]
 };
 
-/// Solves `problem` on `vehicle`; `map` (optional) supplies the lethal layer for the check.
-/// The final status is kConverged only when the re-simulated terminal errors are within the
-/// criteria and every limit holds (else kInfeasible, with the limit named). Never throws.
+/// Solves `problem` on `vehicle`; `map` (optional: no map rules without it) supplies the
+/// lethal, no-data and off-map rules of the check. The solver aims at half the criteria's terminal
+/// tolerances; the final status is the verdict (solution_verdict.hpp) on the re-simulated
+/// trajectory as written: kConverged only when it ends within the criteria and every limit, table
+/// and map rule holds at every sample (else kInfeasible or kDiverged, the rule named). Never
+/// throws.
 BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& vehicle,
                                          const BoundaryValueProblem& problem,
                                          const BoundaryValueOptions& options,

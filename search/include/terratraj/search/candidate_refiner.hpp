@@ -17,15 +17,19 @@
 //      corridor retries);
 //   4. the result is re-simulated independently, re-checked by TrajectoryChecker, and its
 //      signature compared with the candidate's.
-// A refinement counts as converged only when the solver converged, the re-simulation reaches
-// the goal within the tolerances, every limit holds (both checks) and the class is kept.
+// A refinement counts as converged only when the solver converged, the verdict passes on the
+// re-simulated trajectory (the goal within the solver's tolerances, every limit, table and map
+// rule at every row), the class is kept, and it is no worse than a feasible candidate.
 
+#include <atomic>
+#include <chrono>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "terratraj/models/trajectory.hpp"
+#include "terratraj/models/trajectory_verdict.hpp"
 #include "terratraj/ocp/boundary_value_problem.hpp"
 #include "terratraj/ocp/boundary_value_solver.hpp"
 #include "terratraj/ocp/direct_transcription.hpp"
@@ -59,6 +63,19 @@ std::vector<std::string> refineMethodNames();
 /// Settings of a CandidateRefiner.
 struct RefinementOptions {
   RefineMethod method = RefineMethod::kAuto;
+  /// Wall clock of one refine() [s], >= 0, absent = none: every solve, retry and the
+  /// re-simulation share it (a solve gets what is left).
+  std::optional<double> time_limit_s;
+  /// A candidate whose first point is farther than this from the start, or whose last point is
+  /// farther than this from the goal, is refused (kError) [m], > 0.
+  double endpoint_tolerance_m = 0.5;
+  /// A refinement is worse than its feasible candidate when its cost exceeds the candidate's
+  /// (credited with its last point's distance to the exact goal at v_max) by more than this
+  /// fraction, >= 0: the margins and the discretisation put the refinement's optimum a few
+  /// tenths of a per cent above the true one, and the credit is optimistic.
+  double worse_tolerance = 0.01;
+  /// Set from outside to stop a refinement early (SIGINT): it ends with what it has.
+  const std::atomic<bool>* stop = nullptr;
   /// Direct transcription: one interval per this much candidate length [m], > 0 ...
   double interval_length_m = 0.25;
   int min_intervals = 20;   ///< ... but at least this many, >= 1
@@ -113,13 +130,6 @@ struct RefinementOptions {
   /// wiggly candidate cost iterations and can trap the optimiser.
   double shortcut_clearance_m = 0.35;
   double shortcut_gain = 0.95;  ///< in (0, 1]
-  /// Tolerances of the independent re-check of the refined trajectory.
-  CheckTolerances check = [] {
-    CheckTolerances tolerances;
-    tolerances.relative = 1e-3;
-    tolerances.absolute = 1e-6;
-    return tolerances;
-  }();
 };
 
 /// Why the options cannot be used, or std::nullopt.
@@ -135,7 +145,9 @@ struct TrajectoryFigures {
   /// Smallest clearance from impassable cells over the samples [m]; +infinity on a map
   /// without any.
   double min_clearance_m = 0.0;
-  CheckReport check;     ///< the independent re-check (TrajectoryChecker)
+  /// The independent re-check: for a candidate against the planning problem (its goal region),
+  /// for a refinement the verdict's (the exact goal within the solver's tolerances).
+  CheckReport check;
   std::string homotopy;  ///< signature over the refiner's reference frames
 };
 
@@ -163,6 +175,10 @@ struct RefinementResult {
   double solve_time_ms = 0.0;                 ///< whole refinement [ms]
   std::vector<ocp::IterationRecord> history;  ///< per iteration: terminal error, cost
   ocp::VerifiedTrajectory verified;           ///< the independent re-simulation
+  models::TrajectoryVerdict verdict;          ///< the verdict on verified.trajectory
+  /// The refinement ended worse than its feasible candidate: the result is the candidate
+  /// (status kDiverged, reason saying so), `verified` still the refinement's re-simulation.
+  bool returned_candidate = false;
   std::optional<ocp::TranscriptionSolution> transcription;  ///< shooting / collocation
   std::optional<ocp::BoundaryValueSolution> parametric;     ///< newton, ipopt
   /// refined cost / candidate cost (NaN unless both are known).
@@ -171,8 +187,25 @@ struct RefinementResult {
 
 /// Refines candidates of one problem. Holds the clearance map (built once); immutable after
 /// construction, but Ipopt 3.11 is not thread-safe: one refine() at a time per process.
+///
+/// The status of a refinement is the verdict (models::judgeTrajectory) on its re-simulated
+/// trajectory against the boundary-value problem (the exact goal within
+/// `options.parametric.criteria`), plus two rules of its own: the class must be kept
+/// (else kInfeasible), and a refinement worse than its feasible candidate is not converged
+/// (kDiverged, returned_candidate).
 class CandidateRefiner {
  public:
+  /// The wall clock left to one refine() (internal; no limit: +infinity).
+  struct Deadline {
+    std::chrono::steady_clock::time_point started;
+    std::optional<double> limit_s;
+    const std::atomic<bool>* stop = nullptr;
+    /// Seconds left (+infinity without a limit), never below 0.
+    double secondsLeft() const;
+    /// Whether the limit has passed or a stop was requested.
+    bool over() const;
+  };
+
   /// `problem` (map, vehicle, limits, tables, start, goal region), `bvp` (its boundary-value
   /// form: exact start and goal, cost, tables) and `frames` must outlive the refiner.
   CandidateRefiner(const PlanningProblem& problem, const ocp::BoundaryValueProblem& bvp,
@@ -186,7 +219,16 @@ class CandidateRefiner {
 
   /// The figures of a trajectory with every column (cost, extremes, check, class).
   TrajectoryFigures measure(const models::Trajectory& trajectory,
-                            const CheckTolerances& tolerances) const;
+                            const models::TrajectoryRequirements& requirements) const;
+  /// What a candidate is held to: the planning problem (its goal region).
+  const models::TrajectoryRequirements& candidateRequirements() const {
+    return candidate_requirements_;
+  }
+  /// What a refinement is held to: the boundary-value problem's exact goal within the
+  /// solver's tolerances.
+  const models::TrajectoryRequirements& refinedRequirements() const {
+    return refined_requirements_;
+  }
 
   const RefinementOptions& options() const { return options_; }
   const ReferenceFrames& frames() const { return *frames_; }
@@ -195,7 +237,22 @@ class CandidateRefiner {
   // Direct transcription from `guess` with the margin retries, keeping clear of the impassable
   // cells of `clearance`; fills `out` (status, reason, verified, history, intervals, clearance).
   void transcribe(const ocp::TranscriptionGuess& guess, const TrajectoryFigures& before,
-                  const terrain::ClearanceMap& clearance, RefinementResult& out) const;
+                  const terrain::ClearanceMap& clearance, const Deadline& deadline,
+                  RefinementResult& out) const;
+  // The candidate's cost plus its last point's distance to the exact goal at v_max: what a
+  // refinement must not exceed.
+  double candidateCostAtGoal(const TrajectoryFigures& before, const RefinementResult& out) const;
+  bool worseThanCandidate(const TrajectoryFigures& before, const RefinementResult& out) const;
+  // Applies the worse-than-candidate rule and the total time.
+  RefinementResult& finishRefinement(const TrajectoryFigures& before, RefinementResult& out,
+                                     std::chrono::steady_clock::time_point started) const;
+  // The figures without the check.
+  TrajectoryFigures figuresOf(const models::Trajectory& trajectory) const;
+  // Fills refined_figures, verdict, homotopy_kept and the final status from out.verified, the
+  // solve's `status` / `reason` (already the verdict's) and its `verdict` (which must be
+  // against refinedRequirements()); a converged solve that left the class is kInfeasible.
+  void accept(ocp::SolveStatus status, std::string reason, models::TrajectoryVerdict verdict,
+              const TrajectoryFigures& before, RefinementResult& out) const;
   // The candidate's path with greedy straight shortcuts keeping `clearance` [m].
   std::vector<Eigen::Vector2d> shortcutPath(const std::vector<Eigen::Vector2d>& path,
                                             double clearance) const;
@@ -207,6 +264,8 @@ class CandidateRefiner {
   const ReferenceFrames* frames_;
   RefinementOptions options_;
   terrain::ClearanceMap clearance_;
+  models::TrajectoryRequirements candidate_requirements_;
+  models::TrajectoryRequirements refined_requirements_;
 };
 
 /// kAuto's rule for one candidate of planar length `length_m`, smallest clearance

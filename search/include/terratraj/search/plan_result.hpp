@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "terratraj/models/trajectory.hpp"
+#include "terratraj/models/trajectory_checker.hpp"
 
 namespace terratraj::search {
 
@@ -51,6 +52,8 @@ struct SearchStatistics {
   std::size_t homotopy_classes = 0;   ///< TAEASL: classes (open lists) created
   std::size_t frames = 0;             ///< TAEASL: reference frames
   std::size_t pruned_signatures = 0;  ///< TAEASL: successors dropped for a too-long signature
+  std::size_t classes_found = 0;      ///< TAEASL: classes whose search reached the goal
+  std::size_t classes_built = 0;      ///< TAEASL: of which got a trajectory (the limit may stop it)
 };
 
 /// One returned solution (a lattice planner may return several, one per homotopy class).
@@ -63,10 +66,18 @@ struct PlanSolution {
   /// Whether the search proved it the cheapest path in its class (TAEASL) or overall (A* /
   /// ARA* at epsilon 1), up to the lattice.
   bool proven_optimal = false;
-  double found_ms = 0.0;  ///< when the search found it [ms]
+  double found_ms = 0.0;      ///< when the search found it [ms]
+  models::CheckReport check;  ///< the verdict's independent check (applyPlanVerdict)
 };
 
-/// The outcome of KinodynamicPrm::solve().
+/// A solution a planner found but the verdict (applyPlanVerdict) rejected.
+struct RejectedSolution {
+  double cost_s = 0.0;   ///< its duration [s]
+  std::string homotopy;  ///< its class ("" without classes)
+  std::string reason;    ///< the rules its written trajectory breaks
+};
+
+/// The outcome of a planner's solve().
 struct PlanResult {
   PlanStatus status = PlanStatus::kNoSolution;
   std::string reason;                       ///< why there is no solution ("" when solved)
@@ -80,10 +91,12 @@ struct PlanResult {
   std::vector<CostSample> cost_history;  ///< one entry per improvement, in time order
   models::Trajectory trajectory;         ///< the best trajectory, every column filled
   double length_m = 0.0;                 ///< its arc length along the surface [m]
-  /// Lattice planners: every solution, best first (the first is `trajectory`); empty for the
-  /// PRM, whose single solution is `trajectory`.
+  /// Every solution, best first (the first is `trajectory`); one for the PRM. After
+  /// applyPlanVerdict() only those that pass the verdict.
   std::vector<PlanSolution> solutions;
   SearchStatistics search;  ///< lattice planners' counters
+  /// Solutions found but rejected by the verdict (applyPlanVerdict), in the order found.
+  std::vector<RejectedSolution> rejected;
 
   /// trapped / attempts (0 without attempts).
   double trappedFraction() const {

@@ -3,6 +3,7 @@
 // a wall-clock limit, optionally an iteration budget (deterministic runs) and / or the first
 // solution.
 
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <limits>
@@ -25,6 +26,12 @@ class TerminationCondition {
     stop_at_first_solution_ = stop;
     return *this;
   }
+  /// Also stop as soon as `*flag` becomes true (SIGINT); null: never. The flag must outlive
+  /// the solve.
+  TerminationCondition& stopFlag(const std::atomic<bool>* flag) {
+    stop_flag_ = flag;
+    return *this;
+  }
   /// Also stop after `iterations` milestones.
   TerminationCondition& maxIterations(std::size_t iterations) {
     max_iterations_ = iterations;
@@ -37,8 +44,12 @@ class TerminationCondition {
   double elapsedSeconds() const {
     return std::chrono::duration<double>(Clock::now() - start_).count();
   }
-  /// Whether the clock has run out.
-  bool timeUp() const { return elapsedSeconds() >= time_limit_s_; }
+  /// Whether the clock has run out, or a stop was requested through the flag.
+  bool timeUp() const {
+    return elapsedSeconds() >= time_limit_s_ || (stop_flag_ != nullptr && stop_flag_->load());
+  }
+  /// Whether a stop was requested through the flag.
+  bool stopRequested() const { return stop_flag_ != nullptr && stop_flag_->load(); }
   /// Whether to stop after `iterations` milestones, with or without a solution.
   bool shouldStop(std::size_t iterations, bool solved) const {
     return iterations >= max_iterations_ || (solved && stop_at_first_solution_) || timeUp();
@@ -56,6 +67,7 @@ class TerminationCondition {
   std::size_t max_iterations_ = std::numeric_limits<std::size_t>::max();
   bool stop_at_first_solution_ = false;
   Clock::time_point start_ = Clock::now();
+  const std::atomic<bool>* stop_flag_ = nullptr;
 };
 
 }  // namespace terratraj::search

@@ -1,0 +1,175 @@
+#include "terratraj/ocp/transcription_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "terratraj/ocp/solution_verdict.hpp"
+#include "terratraj/ocp/transcription_model.hpp"
+
+namespace terratraj::ocp {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// `problem` with its limits lowered by the margins.
+BoundaryValueProblem tightened(const BoundaryValueProblem& problem, double speed_margin,
+                               double limit_margin) {
+  BoundaryValueProblem out = problem;
+  out.limits.v_max *= 1.0 - speed_margin;
+  out.limits.omega_max *= 1.0 - speed_margin;
+  out.limits.a_max *= 1.0 - speed_margin;
+  for (double* limit : {&out.limits.kappa_max, &out.limits.sigma_max, &out.limits.pitch_max,
+                        &out.limits.roll_max}) {
+    *limit *= 1.0 - limit_margin;
+  }
+  return out;
+}
+
+bool clipsMap(const models::CheckReport& check) {
+  return check.find("lethal") != nullptr || check.find("no_data") != nullptr;
+}
+
+}  // namespace
+
+std::optional<std::string> validateTranscriptionSolveOptions(const TranscriptionSolveOptions& o) {
+  if (!(o.speed_margin >= 0.0 && o.speed_margin < 0.5)) {
+    return "speed_margin must be in [0, 0.5)";
+  }
+  if (!(o.limit_margin >= 0.0 && o.limit_margin < 0.5)) {
+    return "limit_margin must be in [0, 0.5)";
+  }
+  if (o.max_rounds < 0) return "max_rounds must be >= 0";
+  if (o.max_intervals < o.transcription.intervals) {
+    return "max_intervals (" + std::to_string(o.max_intervals) + ") must be >= intervals (" +
+           std::to_string(o.transcription.intervals) + ")";
+  }
+  if (!(o.clearance_floor >= 0.0) || !std::isfinite(o.clearance_floor)) {
+    return "clearance_floor must be a finite number >= 0";
+  }
+  if (o.time_limit_s && !(*o.time_limit_s >= 0.0)) return "time_limit_s must be >= 0";
+  return validateTranscriptionOptions(o.transcription);
+}
+
+void verifyTranscription(const TranscriptionModel& model, const ConvergenceCriteria& criteria,
+                         const terrain::ElevationMap* map, VerifiedTranscription& out) {
+  const SolveResult& result = out.solution.result;
+  out.verified = out.solution.points.empty()
+                     ? VerifiedTrajectory{}
+                     : verifyTranscriptionSolution(model, out.solution, map);
+  if (out.verified.ok) {
+    out.verdict = models::judgeTrajectory(
+        out.verified.trajectory,
+        solveRequirements(model.kinematics().model(), model.problem(), criteria, map));
+  } else if (out.verified.message.empty()) {
+    out.verified.message = "no solution to re-simulate";
+  }
+  if (result.status != SolveStatus::kConverged) {
+    out.status = result.status;
+    out.reason = result.reason;
+    return;
+  }
+  if (!out.verified.ok) {
+    out.status = SolveStatus::kDiverged;
+    out.reason = "the re-simulation failed: " + out.verified.message;
+    return;
+  }
+  out.status = statusAfterVerdict(SolveStatus::kConverged, out.verdict);
+  out.reason = out.verdict.reason;
+  // The Segway's own constraints, which the trajectory check cannot see (they need the
+  // platform's dynamics), from the re-simulation.
+  if (out.status == SolveStatus::kConverged && out.verified.violation.amount > 1e-3 &&
+      out.verified.violation.limit.rfind("segway", 0) == 0) {
+    out.status = SolveStatus::kInfeasible;
+    out.reason = "the re-simulation breaks " + out.verified.violation.limit + " by " +
+                 std::to_string(out.verified.violation.amount);
+  }
+}
+
+VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& vehicle,
+                                         const BoundaryValueProblem& problem,
+                                         const TranscriptionGuess& guess,
+                                         const TranscriptionSolveOptions& options) {
+  const Clock::time_point started = Clock::now();
+  VerifiedTranscription out;
+  const auto finish = [&]() -> VerifiedTranscription& {
+    out.solve_time_ms = 1e3 * secondsSince(started);
+    return out;
+  };
+  if (std::optional<std::string> why = validateTranscriptionSolveOptions(options)) {
+    out.status = SolveStatus::kError;
+    out.reason = *why;
+    return finish();
+  }
+  const auto left = [&]() -> std::optional<double> {
+    if (!options.time_limit_s) return std::nullopt;
+    return std::max(0.0, *options.time_limit_s - secondsSince(started));
+  };
+  const auto over = [&] {
+    return (options.stop != nullptr && options.stop->load()) ||
+           (options.time_limit_s && secondsSince(started) >= *options.time_limit_s);
+  };
+  DirectTranscriptionOptions transcription = options.transcription;
+  // Verified against the true limits, and against lethal cells only (the verdict) rather than
+  // the clearance the solver kept.
+  TranscriptionModelOptions verification = transcription.model;
+  verification.clearance.min_clearance = 0.0;
+  const TranscriptionModel model(vehicle, problem, verification);
+  double speed_margin = options.speed_margin, limit_margin = options.limit_margin;
+  bool doubled = false;
+  TranscriptionGuess start = guess;
+  for (int round = 0; round <= options.max_rounds; ++round) {
+    if (round > 0 && over()) {
+      out.reason += " (no further round: the time limit is reached or a stop was requested)";
+      break;
+    }
+    transcription.time_limit_s = left();
+    out.solution = solveDirectTranscription(vehicle, tightened(problem, speed_margin, limit_margin),
+                                            start, transcription);
+    verifyTranscription(model, options.criteria, options.map, out);
+    for (IterationRecord r : out.solution.result.history) {
+      r.iteration += out.iterations;
+      out.history.push_back(r);
+    }
+    out.iterations += out.solution.result.iterations;
+    const int intervals = static_cast<int>(out.solution.mesh.size()) - 1;
+    out.rounds.push_back({intervals, speed_margin, limit_margin,
+                          transcription.model.clearance.map != nullptr
+                              ? transcription.model.clearance.min_clearance
+                              : 0.0,
+                          out.status, out.reason, out.solution.result.iterations});
+    if (out.status == SolveStatus::kConverged) break;
+    if (out.solution.result.status != SolveStatus::kConverged || !out.verified.ok) break;
+    start = out.solution.asGuess();
+    const bool can_double = 2 * transcription.intervals <= options.max_intervals;
+    if (out.verdict.failure == models::VerdictFailure::kMissesGoal) {
+      // The discretisation error: more intervals.
+      if (!can_double) {
+        out.reason += ": the mesh is at its cap of " + std::to_string(options.max_intervals) +
+                      " intervals (raise it)";
+        break;
+      }
+      transcription.intervals *= 2;
+    } else if (clipsMap(out.verdict.check) && transcription.model.clearance.map != nullptr &&
+               transcription.model.clearance.min_clearance < options.clearance_floor) {
+      transcription.model.clearance.min_clearance = options.clearance_floor;
+    } else if (!doubled && can_double) {
+      // A limit broken between the points: the overshoot shrinks with the interval ...
+      transcription.intervals *= 2;
+      doubled = true;
+    } else {
+      // ... or with wider margins (which cost optimality).
+      speed_margin = std::min(0.25, 4.0 * std::max(speed_margin, 1e-4));
+      limit_margin = std::min(0.25, 2.0 * std::max(limit_margin, 1e-3));
+    }
+  }
+  return finish();
+}
+
+}  // namespace terratraj::ocp

@@ -1,0 +1,60 @@
+#include "terratraj/search/plan_verdict.hpp"
+
+#include <sstream>
+
+#include "terratraj/models/trajectory_verdict.hpp"
+#include "terratraj/search/trajectory_checker.hpp"
+
+namespace terratraj::search {
+
+bool admitSolution(const models::TrajectoryRequirements& requirements, PlanSolution solution,
+                   PlanResult& result) {
+  models::TrajectoryVerdict verdict = models::judgeTrajectory(solution.trajectory, requirements);
+  if (!verdict.passes()) {
+    result.rejected.push_back({solution.cost_s, solution.homotopy, verdict.reason});
+    return false;
+  }
+  solution.check = std::move(verdict.check);
+  result.solutions.push_back(std::move(solution));
+  return true;
+}
+
+void concludePlan(PlanResult& result) {
+  if (!result.solutions.empty()) {
+    const PlanSolution& best = result.solutions.front();
+    result.status = PlanStatus::kSolved;
+    result.trajectory = best.trajectory;
+    result.best_cost_s = best.cost_s;
+    result.length_m = best.length_m;
+    result.reason.clear();
+    return;
+  }
+  result.status = PlanStatus::kNoSolution;
+  result.trajectory = models::Trajectory();
+  if (result.rejected.empty()) return;
+  std::ostringstream reason;
+  reason << "every solution found (" << result.rejected.size()
+         << ") fails the independent check of its trajectory; the first: "
+         << result.rejected.front().reason;
+  result.reason = reason.str();
+}
+
+void applyPlanVerdict(const PlanningProblem& problem, PlanResult& result) {
+  if (result.status != PlanStatus::kSolved) return;
+  std::vector<PlanSolution> found = std::move(result.solutions);
+  result.solutions.clear();
+  if (found.empty()) {
+    PlanSolution only;
+    only.trajectory = result.trajectory;
+    only.cost_s = result.best_cost_s;
+    only.search_cost_s = result.best_cost_s;
+    only.length_m = result.length_m;
+    only.found_ms = result.first_solution_ms.value_or(0.0);
+    found.push_back(std::move(only));
+  }
+  const models::TrajectoryRequirements requirements = requirementsOf(problem);
+  for (PlanSolution& solution : found) admitSolution(requirements, std::move(solution), result);
+  concludePlan(result);
+}
+
+}  // namespace terratraj::search
