@@ -86,6 +86,7 @@ nlohmann::json runHere(const BenchmarkSuite& suite, const std::vector<BenchmarkC
   nlohmann::json rows = nlohmann::json::array();
   int done = 0;
   for (const int i : cases) {
+    if (context.stopRequested()) break;  // SIGINT: the finished rows are kept
     const auto started = std::chrono::steady_clock::now();
     nlohmann::json row = all[static_cast<std::size_t>(i)].run();
     row["case"] = i;
@@ -293,25 +294,48 @@ int runBench(const BenchOptions& options, CommandContext& context) {
   } else {
     for (int i = shard.index - 1; i < total; i += shard.count) cases.push_back(i);
   }
+  // Every output and input is checked before the first case: a long run must not lose its rows.
+  const fs::path out = options.out.empty() ? defaultOut(suite->name(), shard) : options.out;
+  ensureWritableFile(out, "--out");
+  if (options.plot) ensureWritableFile(*options.plot, "--plot");
+  if (!options.settings.data_dir.empty()) {
+    ensureReadableFolder(options.settings.data_dir, "--data-dir");
+  }
+  for (const fs::path& input : suite->inputFiles()) {
+    if (!std::ifstream(input)) {
+      throw InputError("--data-dir: " + input.string() + " cannot be read (the " + suite->name() +
+                       " suite needs it; --data-dir \"\" skips the real DEMs)");
+    }
+  }
   context.log->info("suite {}: {} of {} cases (shard {}), {} process(es)", suite->name(),
                     cases.size(), total, options.shard, options.jobs);
   const bool workers = options.jobs > 1 && cases.size() > 1;
   nlohmann::json rows = workers ? runInWorkers(options, cases, context)
                                 : runHere(*suite, all, cases, options.worker_tag, context);
-  const fs::path out = options.out.empty() ? defaultOut(suite->name(), shard) : options.out;
   nlohmann::json result = resultJson(*suite, options.settings, total, std::move(rows),
                                      options.shard, millisecondsSince(started) / 1000.0);
   result["processes"] = workers ? std::min<int>(options.jobs, static_cast<int>(cases.size())) : 1;
+  if (context.stopRequested()) {
+    result["stopped_by"] = "interrupt";
+    context.log->warn("interrupted: {} of {} cases finished, written to {}", result["rows"].size(),
+                      cases.size(), out.string());
+  }
   return finish(*suite, std::move(result), out, options.plot, !options.worker_tag.empty(), context);
 }
 
 int runBenchMerge(const BenchMergeOptions& options, CommandContext& context) {
   if (options.inputs.empty()) throw InputError("bench merge: no input files");
+  ensureWritableFile(options.out, "--out");
+  if (options.plot) ensureWritableFile(*options.plot, "--plot");
   const auto started = std::chrono::steady_clock::now();
   nlohmann::json first;
   std::map<int, nlohmann::json> rows;
+  double parts_wall_s = 0.0;
+  nlohmann::json parts_wall = nlohmann::json::array();
   for (const fs::path& input : options.inputs) {
     nlohmann::json part = readResult(input);
+    parts_wall_s += part.value("wall_time_s", 0.0);
+    parts_wall.push_back(part.value("wall_time_s", 0.0));
     if (first.is_null()) {
       first = part;
     } else {
@@ -339,8 +363,12 @@ int runBenchMerge(const BenchMergeOptions& options, CommandContext& context) {
   nlohmann::json merged_rows = nlohmann::json::array();
   for (auto& [i, row] : rows) merged_rows.push_back(std::move(row));
   const int total = first["cases_total"].get<int>();
-  nlohmann::json result = resultJson(*suite, settings, total, std::move(merged_rows), "merged",
-                                     millisecondsSince(started) / 1000.0);
+  // The merged run's wall time is not known (the parts may have run in parallel or in turn):
+  // the sum of the parts' is reported, with each part's.
+  nlohmann::json result =
+      resultJson(*suite, settings, total, std::move(merged_rows), "merged", parts_wall_s);
+  result["wall_time_s_of_parts"] = parts_wall;
+  result["merge_time_s"] = millisecondsSince(started) / 1000.0;
   result["merged_from"] = nlohmann::json::array();
   for (const fs::path& input : options.inputs) result["merged_from"].push_back(input.string());
   nlohmann::json missing = nlohmann::json::array();

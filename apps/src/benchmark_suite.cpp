@@ -1,5 +1,7 @@
 #include "terratraj/apps/benchmark_suite.hpp"
 
+#include <sstream>
+
 #include <algorithm>
 #include <cmath>
 
@@ -74,6 +76,15 @@ nlohmann::json distributionJson(std::vector<double> values) {
   return {{"count", values.size()},         {"median", percentile(values, 0.5)},
           {"p90", percentile(values, 0.9)}, {"min", values.front()},
           {"max", values.back()},           {"mean", sum / static_cast<double>(values.size())}};
+}
+
+std::string figureText(const nlohmann::json& distribution, const char* key) {
+  if (!distribution.is_object() || !distribution.contains(key) || !distribution[key].is_number()) {
+    return "n/a";
+  }
+  std::ostringstream text;
+  text << distribution[key].get<double>();
+  return text.str();
 }
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {

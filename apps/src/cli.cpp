@@ -7,7 +7,9 @@
 #include <cstring>
 #include <filesystem>
 #include <new>
+#include <optional>
 #include <ostream>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -71,6 +73,36 @@ std::string kindsHelp() {
   return text.str();
 }
 
+// Numbers on the command line are read as the problem file reads them: decimal only. CLI11
+// alone would take "0x1" for 1 and wrap "-1" into 2^64 - 1 for an unsigned seed.
+const CLI::Validator kDecimal(
+    [](std::string& text) -> std::string {
+      static const std::regex decimal(R"(^[+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?$)");
+      return std::regex_match(text, decimal) ? std::string()
+                                             : "'" + text + "' is not a decimal number";
+    },
+    "DECIMAL");
+const CLI::Validator kCount(
+    [](std::string& text) -> std::string {
+      static const std::regex digits(R"(^\+?[0-9]+$)");
+      return std::regex_match(text, digits)
+                 ? std::string()
+                 : "'" + text + "' is not a whole number >= 0 (decimal digits)";
+    },
+    "INTEGER >= 0");
+
+// The first argument, when it is neither an option nor a command: a typo to name.
+std::optional<std::string> unknownCommand(int argc, const char* const* argv, const CLI::App& app) {
+  if (argc < 2 || argv[1][0] == '-') return std::nullopt;
+  const std::string first = argv[1];
+  std::string names;
+  for (const CLI::App* command : app.get_subcommands({})) {
+    if (command->get_name() == first) return std::nullopt;
+    names += (names.empty() ? "" : ", ") + command->get_name();
+  }
+  return "unknown command '" + first + "' (commands: " + names + "; see --help)";
+}
+
 void addBinningOptions(CLI::App& command, TableBinning& binning) {
   command.add_option("--kind", binning.kind, "pitch | roll_curvature")
       ->capture_default_str()
@@ -84,11 +116,18 @@ void addBinningOptions(CLI::App& command, TableBinning& binning) {
 }
 
 void addGeneratorOptions(CLI::App& command, terrain::GeneratorOptions& generator) {
-  command.add_option("--rows", generator.rows, "cells along y (north)")->capture_default_str();
-  command.add_option("--cols", generator.cols, "cells along x (east)")->capture_default_str();
-  command.add_option("--cell", generator.cell, "cell size [m]")->capture_default_str();
+  command.add_option("--rows", generator.rows, "cells along y (north)")
+      ->capture_default_str()
+      ->check(kCount);
+  command.add_option("--cols", generator.cols, "cells along x (east)")
+      ->capture_default_str()
+      ->check(kCount);
+  command.add_option("--cell", generator.cell, "cell size [m]")
+      ->capture_default_str()
+      ->check(kDecimal);
   command.add_option("--seed", generator.seed, "random seed (same seed, same terrain)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kCount);
 }
 
 }  // namespace
@@ -175,8 +214,9 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   plan_command
       ->add_option("--planner", plan.planner, "overrides planner.kind (prm, lattice, taeasl)")
       ->check(CLI::IsMember(plannerKindNames()));
-  plan_command->add_option("--time-limit", plan.time_limit_s, "overrides planner.time_limit_s [s]");
-  plan_command->add_option("--seed", plan.seed, "overrides planner.seed");
+  plan_command->add_option("--time-limit", plan.time_limit_s, "overrides planner.time_limit_s [s]")
+      ->check(kDecimal);
+  plan_command->add_option("--seed", plan.seed, "overrides planner.seed")->check(kCount);
   plan_command->add_option("--out-dir", plan.out_dir, "output folder")->capture_default_str();
   plan_command->add_flag("--refine", plan.refine,
                          "refine every solution (refine.method; docs/refinement.md)");
@@ -218,13 +258,16 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   bench_command->add_flag("--quick", bench.settings.quick,
                           "a small subset of every set (seconds instead of minutes)");
   bench_command->add_option("--seed", bench.settings.seed, "first seed of every random choice")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kCount);
   bench_command->add_option("--seeds", bench.settings.seeds, "repetitions (maps, planner seeds)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kCount);
   bench_command
       ->add_option("--time-limit", bench.settings.time_limit_s,
                    "planners: longest anytime budget [s]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kDecimal);
   bench_command
       ->add_option("--data-dir", bench.settings.data_dir,
                    "folder of the real DEMs (\"\" skips them)")
@@ -233,7 +276,9 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   bench_command->add_option("--plot", bench.plot, "also draw the figures: FILE.png and siblings");
   bench_command->add_option("--shard", bench.shard, "K/N: run every N-th case from the K-th")
       ->capture_default_str();
-  bench_command->add_option("--jobs", bench.jobs, "worker processes")->capture_default_str();
+  bench_command->add_option("--jobs", bench.jobs, "worker processes")
+      ->capture_default_str()
+      ->check(kCount);
   bench_command->add_option("--cases", bench.cases, "case indices (used by workers)")->group("");
   bench_command->add_option("--worker-tag", bench.worker_tag, "(used by workers)")->group("");
   bench_command->add_flag("--json", json_flag, "print the result (without rows) as JSON");
@@ -315,11 +360,16 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       "turns with the roll against them) on generated hills.");
   lut_simulate_command->add_option("--out", lut_simulate.out, "trajectory CSV to write")
       ->required();
-  lut_simulate_command->add_option("--seed", lut_simulate.driver.seed)->capture_default_str();
+  lut_simulate_command->add_option("--seed", lut_simulate.driver.seed)
+      ->capture_default_str()
+      ->check(kCount);
   lut_simulate_command->add_option("--duration", lut_simulate.driver.duration, "[s]")
       ->capture_default_str();
   lut_simulate_command->add_flag("--json", json_flag, "print one JSON object");
 
+  if (const std::optional<std::string> unknown = unknownCommand(argc, argv, app)) {
+    return reportError(*unknown, kExitBadInput, context);
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

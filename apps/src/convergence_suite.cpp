@@ -225,9 +225,15 @@ nlohmann::json runCase(const ProblemSetData& data, int index, const std::string&
 class ConvergenceSuite final : public BenchmarkSuite {
  public:
   explicit ConvergenceSuite(const BenchmarkSettings& settings)
-      : specs_(problemSets(settings)), cache_(std::make_shared<Cache>()) {}
+      : settings_(settings), specs_(problemSets(settings)), cache_(std::make_shared<Cache>()) {}
 
   std::string name() const override { return "convergence"; }
+  std::vector<std::filesystem::path> inputFiles() const override {
+    std::vector<std::filesystem::path> files;
+    if (settings_.data_dir.empty()) return files;
+    for (const DemSpec& dem : kDems) files.push_back(settings_.data_dir / dem.file);
+    return files;
+  }
 
   std::vector<BenchmarkCase> cases() const override {
     std::vector<BenchmarkCase> out;
@@ -332,16 +338,17 @@ class ConvergenceSuite final : public BenchmarkSuite {
       const nlohmann::json& s = summary["solvers"][solver];
       const std::size_t width = std::string(solver).size();
       text << solver << std::string(width < 20 ? 20 - width : 1, ' ') << s["converged"] << "/"
-           << s["runs"] << "    " << s["iterations"].value("median", 0.0) << "    "
-           << s["time_ms"].value("median", 0.0) << ", " << s["time_ms"].value("p90", 0.0) << "    "
-           << s["cost_relative_to_best"].value("mean", 0.0) << ", "
-           << s["cost_relative_to_best"].value("max", 0.0) << "    "
-           << s["time_over_newton_fd"].value("median", 0.0) << '\n';
+           << s["runs"] << "    " << figureText(s["iterations"], "median") << "    "
+           << figureText(s["time_ms"], "median") << ", " << figureText(s["time_ms"], "p90")
+           << "    " << figureText(s["cost_relative_to_best"], "mean") << ", "
+           << figureText(s["cost_relative_to_best"], "max") << "    "
+           << figureText(s["time_over_newton_fd"], "median") << '\n';
     }
     return text.str();
   }
 
  private:
+  BenchmarkSettings settings_;
   struct Cache {
     std::map<std::size_t, std::unique_ptr<ProblemSetData>> sets;
   };

@@ -22,6 +22,7 @@
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/lattice_graph.hpp"
 #include "terratraj/search/lattice_planner.hpp"
+#include "terratraj/search/plan_verdict.hpp"
 #include "terratraj/search/primitive_file.hpp"
 #include "terratraj/search/taeasl_planner.hpp"
 #include "terratraj/search/trajectory_checker.hpp"
@@ -161,30 +162,37 @@ double latticeResolution(const ProblemSpec& problem, const terrain::GridGeometry
   return geometry.cell * std::max(1.0, std::round(0.5 / geometry.cell));
 }
 
-// Fails with the key at fault when no lattice state can lie in the goal region.
-void checkGoalReachable(const ProblemSpec& problem, const search::LatticeGraph& graph) {
-  const search::GoalRegion& goal = graph.problem().goal;
-  const search::LatticeSpec& lattice = graph.lattice();
-  const Eigen::Vector2d cells =
-      (goal.position - graph.problem().start.position) / lattice.resolution;
-  const search::LatticeState nearest{static_cast<int>(std::lround(cells.x())),
-                                     static_cast<int>(std::lround(cells.y())), 0};
-  if ((graph.position(nearest) - goal.position).norm() > goal.position_tolerance) {
-    throw InputError(
-        problem.source_file.string() + ": planner.goal_position_tolerance_m: " +
-        formatNumber(goal.position_tolerance) + " m holds no lattice position (spacing " +
-        formatNumber(lattice.resolution) + " m from the start): use at least " +
-        formatNumber(std::ceil(lattice.resolution * std::sqrt(0.5) * 100.0) / 100.0) + " m");
+}  // namespace
+
+void checkLatticeGoal(const ProblemSpec& problem, const terrain::GridGeometry& geometry) {
+  search::LatticeSpec lattice;
+  lattice.resolution = latticeResolution(problem, geometry);
+  lattice.heading_count = problem.planner.heading_count;
+  const Eigen::Vector2d start(problem.start.x, problem.start.y);
+  const Eigen::Vector2d goal(problem.goal.x, problem.goal.y);
+  const Eigen::Vector2d cells = (goal - start) / lattice.resolution;
+  const Eigen::Vector2d nearest =
+      start + lattice.resolution * Eigen::Vector2d(std::round(cells.x()), std::round(cells.y()));
+  const double position_tolerance = problem.planner.goal_position_tolerance_m;
+  if ((nearest - goal).norm() > position_tolerance) {
+    throw InputError(problem.source_file.string() + ": planner.goal_position_tolerance_m: " +
+                     formatNumber(position_tolerance) + " m holds no lattice position (spacing " +
+                     formatNumber(lattice.resolution) + " m from the start): use at least " +
+                     formatNumber(std::ceil(lattice.resolution * std::sqrt(0.5) * 100.0) / 100.0) +
+                     " m");
   }
-  const double heading_gap = std::abs(
-      search::wrapAngle(goal.heading - lattice.headingAngle(lattice.nearestHeading(goal.heading))));
-  if (heading_gap > goal.heading_tolerance) {
+  const double heading_tolerance = problem.planner.goal_heading_tolerance;
+  const double heading_gap = std::abs(search::wrapAngle(
+      problem.goal.heading - lattice.headingAngle(lattice.nearestHeading(problem.goal.heading))));
+  if (heading_gap > heading_tolerance) {
     throw InputError(problem.source_file.string() +
-                     ": planner.goal_heading_tolerance: " + formatNumber(goal.heading_tolerance) +
+                     ": planner.goal_heading_tolerance: " + formatNumber(heading_tolerance) +
                      " rad holds no lattice heading (" + std::to_string(lattice.heading_count) +
                      " headings): use at least " + formatNumber(heading_gap) + " rad");
   }
 }
+
+namespace {
 
 // Writes every solution (each passed the verdict in the planner) and fills the report's info.
 void writeSolutions(const search::PlanResult& result, const std::filesystem::path& out_dir,
@@ -203,15 +211,41 @@ search::FrameAnchor parseAnchor(const std::string& name) {
   return search::FrameAnchor::kMapCenter;
 }
 
+// The planner's time limit, iteration budget (planner.max_iterations) and the SIGINT flag.
+search::TerminationCondition planTermination(const ProblemSpec& problem, CommandContext& context) {
+  search::TerminationCondition termination =
+      search::TerminationCondition::timeLimit(problem.planner.time_limit_s);
+  if (problem.planner.max_iterations) {
+    termination.maxIterations(static_cast<std::size_t>(*problem.planner.max_iterations));
+  }
+  termination.stopFlag(context.stop);
+  return termination;
+}
+
+// A progress line per solved heading of the primitive generation (seconds to minutes).
+std::function<void(int, int)> primitiveProgress(CommandContext& context) {
+  return [&context](int done, int total) {
+    context.log->info("motion primitives: solving heading {} of {}", done + 1, total);
+  };
+}
+
 // The lattice planners: primitives (file, cache or generated), graph, A* / ARA* or TAEASL.
 search::PlanResult runLatticePlanner(const ProblemSpec& problem,
                                      const search::PlanningProblem& query, PlanReportInfo& info,
                                      CommandContext& context) {
+  if (query.goal.contains(query.start)) {
+    // Nothing to drive: no lattice (nor its start connectors) is needed.
+    search::PlanResult result;
+    search::planStartInGoal(query, result);
+    return result;
+  }
   search::LatticeSpec lattice;
   lattice.resolution = latticeResolution(problem, query.map->geometry());
   lattice.heading_count = problem.planner.heading_count;
   search::PrimitiveGenerationOptions generation;
   if (problem.planner.primitive_speed) generation.speed = *problem.planner.primitive_speed;
+  generation.progress = primitiveProgress(context);
+  generation.stop = context.stop;
   const auto load_started = std::chrono::steady_clock::now();
   const search::LoadedPrimitives primitives = search::loadOrGeneratePrimitives(
       lattice, query.limits, generation,
@@ -230,7 +264,7 @@ search::PlanResult runLatticePlanner(const ProblemSpec& problem,
   }
   const search::LatticeGraph graph(query, primitives.set, graph_options);
   if (graph.error()) throw InputError(problem.source_file.string() + ": " + *graph.error());
-  checkGoalReachable(problem, graph);
+  checkLatticeGoal(problem, query.map->geometry());
   info.extra["lattice"] = {
       {"resolution_m", lattice.resolution},
       {"heading_count", lattice.heading_count},
@@ -484,8 +518,7 @@ PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandCon
     search::KinodynamicPrm planner(query, prm);
     context.log->info("planning with prm for {} s (seed {}, {} model)",
                       problem.planner.time_limit_s, prm.seed, vehicle.name());
-    result = planner.solve(search::TerminationCondition::timeLimit(problem.planner.time_limit_s)
-                               .stopFlag(context.stop));
+    result = planner.solve(planTermination(problem, context));
   } else {
     result = runLatticePlanner(problem, query, info, context);
   }
@@ -552,6 +585,8 @@ int runPrimitives(const PrimitivesOptions& options, CommandContext& context) {
   lattice.heading_count = problem.planner.heading_count;
   search::PrimitiveGenerationOptions generation;
   if (problem.planner.primitive_speed) generation.speed = *problem.planner.primitive_speed;
+  generation.progress = primitiveProgress(context);
+  generation.stop = context.stop;
   context.log->info("generating motion primitives: {} m lattice, {} headings", lattice.resolution,
                     lattice.heading_count);
   const search::PrimitiveGenerationResult result =

@@ -4,8 +4,11 @@
 #include <sstream>
 
 #include "terratraj/apps/cli.hpp"
+#include "terratraj/apps/plan_command.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
+#include "terratraj/apps/refine_command.hpp"
+#include "terratraj/apps/solve_command.hpp"
 #include "terratraj/apps/terrain_commands.hpp"
 #include "terratraj/terrain/input_error.hpp"
 #include "terratraj/terrain/terrain_source.hpp"
@@ -129,10 +132,30 @@ nlohmann::json problemJson(const ProblemSpec& problem) {
   };
 }
 
+void checkForEveryCommand(const ProblemSpec& problem, const ProblemScene& scene) {
+  // A failure names the commands that would refuse the file.
+  const auto as = [&](const char* commands, const auto& check) {
+    try {
+      check();
+    } catch (const InputError& error) {
+      throw InputError(std::string(error.what()) + " [refused by " + commands + "]");
+    }
+  };
+  as("solve", [&] {
+    if (isTranscriptionMethod(problem.solver.method)) (void)transcriptionOptions(problem);
+  });
+  as("plan and refine", [&] { (void)planningProblem(problem, scene); });
+  if (problem.planner.kind != PlannerKind::kPrm) {
+    as("plan", [&] { checkLatticeGoal(problem, scene.map().geometry()); });
+  }
+  as("refine and plan --refine", [&] { (void)refinementOptions(problem, std::nullopt); });
+}
+
 int runCheck(const CheckOptions& options, CommandContext& context) {
   ProblemSpec problem = loadProblem(options.problem);
   context.log->info("{}: problem read", options.problem.string());
   const ProblemScene scene(problem, context);
+  checkForEveryCommand(problem, scene);
   const terrain::ElevationMap& map = scene.map();
   const models::AttitudeResult& start = scene.startAttitude();
   const models::AttitudeResult& goal = scene.goalAttitude();

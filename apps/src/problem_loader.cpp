@@ -513,12 +513,17 @@ terrain::GeneratorOptions parseGenerate(const Context& ctx, const Field& field) 
 
 // `terrain.obstacles`: a lethal raster and/or a maximum slope, at least one.
 terrain::ObstacleSource parseObstacles(const Context& ctx, const Field& field) {
-  const MapReader map(ctx, field, {"file", "max_slope", "max_slope_deg"});
+  const MapReader map(ctx, field, {"file", "band", "max_slope", "max_slope_deg"});
   terrain::ObstacleSource obstacles;
   if (const std::optional<Field> file = map.find("file")) obstacles.file = readPath(ctx, *file);
+  if (map.find("band")) {
+    int band = 1;
+    map.readIntInto("band", 1, 65535, band);
+    obstacles.band = band;
+  }
   obstacles.max_slope = map.optionalAngle("max_slope", rightAngleRangeDeg());
-  if (!obstacles.file && !obstacles.max_slope) {
-    map.fail("", "give file and/or max_slope_deg (or remove obstacles)");
+  if (!obstacles.file && !obstacles.max_slope && !obstacles.band) {
+    map.fail("", "give file, band and/or max_slope_deg (or remove obstacles)");
   }
   return obstacles;
 }
@@ -561,6 +566,10 @@ terrain::TerrainSource parseTerrain(const Context& ctx, const Field& field) {
   }
   if (const std::optional<Field> obstacles = map.find("obstacles")) {
     source.obstacles = parseObstacles(ctx, *obstacles);
+    if (source.obstacles.band && !source.obstacles.file && !file) {
+      ctx.fail(obstacles->key_mark, obstacles->path + ".band",
+               "a band of the terrain's raster needs terrain.file (or give obstacles.file)");
+    }
   }
   return source;
 }
@@ -715,18 +724,37 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
 
 // `planner`.
 PlannerSpec parsePlanner(const Context& ctx, const Field& field) {
-  const MapReader map(
-      ctx, field,
-      {"kind", "time_limit_s", "seed", "homotopy_classes", "frame_radius_m",
-       "goal_position_tolerance_m", "goal_heading_tolerance", "goal_heading_tolerance_deg",
-       "goal_speed_tolerance", "lattice_resolution_m", "heading_count", "primitives",
-       "primitive_speed", "algorithm", "initial_epsilon", "epsilon_step", "frame_anchor",
-       "heuristic_weight", "max_signature_length"});
+  const MapReader map(ctx, field,
+                      {"kind",
+                       "time_limit_s",
+                       "max_iterations",
+                       "seed",
+                       "homotopy_classes",
+                       "frame_radius_m",
+                       "goal_position_tolerance_m",
+                       "goal_heading_tolerance",
+                       "goal_heading_tolerance_deg",
+                       "goal_speed_tolerance",
+                       "lattice_resolution_m",
+                       "heading_count",
+                       "primitives",
+                       "primitive_speed",
+                       "algorithm",
+                       "initial_epsilon",
+                       "epsilon_step",
+                       "frame_anchor",
+                       "heuristic_weight",
+                       "max_signature_length"});
   PlannerSpec planner;
   if (const std::optional<Field> kind = map.find("kind")) {
     planner.kind = readEnum<PlannerKind>(ctx, *kind, parsePlannerKind, plannerKindNames());
   }
   map.readNumberInto("time_limit_s", Range::nonNegative(), planner.time_limit_s);
+  if (map.find("max_iterations")) {
+    int iterations = 1;
+    map.readIntInto("max_iterations", 1, std::numeric_limits<int>::max(), iterations);
+    planner.max_iterations = iterations;
+  }
   map.readSeedInto("seed", planner.seed);
   map.readIntInto("homotopy_classes", kMinHomotopyClasses, kMaxHomotopyClasses,
                   planner.homotopy_classes);

@@ -157,9 +157,9 @@ class RefineSuite final : public BenchmarkSuite {
          << " converged, " << summary["class_kept"] << " kept their class, " << summary["check_ok"]
          << " pass the independent check\n"
          << "refined / candidate time: mean "
-         << summary["refined_over_candidate"].value("mean", 0.0) << '\n';
+         << figureText(summary["refined_over_candidate"], "mean") << '\n';
     for (const auto& [planner, d] : summary["by_planner"].items()) {
-      text << "  " << planner << ": mean " << d.value("mean", 0.0) << " (" << d["count"]
+      text << "  " << planner << ": mean " << figureText(d, "mean") << " (" << d["count"]
            << " refinements)\n";
     }
     return text.str();

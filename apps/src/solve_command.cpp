@@ -6,6 +6,7 @@
 
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/json_number.hpp"
+#include "terratraj/apps/output_paths.hpp"
 #include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
@@ -15,6 +16,7 @@
 #include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
+#include "terratraj/ocp/start_at_goal.hpp"
 #include "terratraj/ocp/transcription_solver.hpp"
 #include "terratraj/terrain/clearance_map.hpp"
 #include "terratraj/terrain/input_error.hpp"
@@ -236,11 +238,6 @@ nlohmann::json plotSolve(const SolveOptions& options, const ProblemSpec& problem
                          const std::vector<ocp::IterationRecord>& history,
                          const std::string& method, CommandContext& context) {
   const std::filesystem::path& png = *options.plot;
-  if (png.has_parent_path()) {
-    std::error_code error;
-    std::filesystem::create_directories(png.parent_path(), error);
-    if (error) throw InputError("--plot: cannot create '" + png.parent_path().string() + "'");
-  }
   PlotRequest plot;
   plot.title = "solve (" + method + ")";
   plot.limits = problem.vehicle.limits;
@@ -272,7 +269,10 @@ int runTranscription(const SolveOptions& options, const ProblemSpec& problem,
                      CommandContext& context) {
   std::optional<ocp::TranscriptionGuess> guess;
   std::string source;
-  if (options.guess) {
+  if (ocp::startMeetsGoal(bvp, parametric_options.criteria)) {
+    guess = ocp::TranscriptionGuess{};  // nothing to drive: solveTranscription needs no guess
+    source = "none (the start meets the goal)";
+  } else if (options.guess) {
     const models::Trajectory candidate = models::readTrajectoryCsv(*options.guess);
     std::string why;
     guess = ocp::guessFromCandidate(candidate, bvp, &why);
@@ -288,7 +288,14 @@ int runTranscription(const SolveOptions& options, const ProblemSpec& problem,
       guess = ocp::guessFromPath({{bvp.start.x, bvp.start.y}, {bvp.goal.x, bvp.goal.y}}, bvp);
       source = "straight line";
     }
-    if (!guess) throw InputError(problem.source_file.string() + ": start and goal coincide");
+    if (!guess) {
+      throw InputError(problem.source_file.string() +
+                       ": no initial guess for direct transcription: the parametric solution "
+                       "failed (" +
+                       parametric.reason +
+                       ") and the start and goal positions coincide, so a straight line is no "
+                       "guess either: give one with --guess (a loop through the turn)");
+    }
   }
   std::optional<terrain::ClearanceMap> clearance;
   if (problem.solver.min_clearance_m) {
@@ -367,6 +374,9 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
   if (options.guess && !transcription) {
     throw InputError("--guess: only shooting and collocation take an initial guess");
   }
+  // Every output is checked before the work starts.
+  if (options.out) ensureWritableFile(*options.out, "--out");
+  if (options.plot) ensureWritableFile(*options.plot, "--plot");
   const ProblemScene scene(problem, context);
   const terrain::ElevationMap& map = scene.map();
   const models::TerrainFollowingModel& vehicle = scene.vehicle();

@@ -21,12 +21,6 @@ std::optional<std::string> validateBoundaryStates(const BoundaryValueProblem& pr
   if (!(problem.cost.alpha >= 0.0) || !std::isfinite(problem.cost.alpha)) {
     return "cost alpha must be finite and >= 0";
   }
-  const double dx = problem.goal.x - problem.start.x;
-  const double dy = problem.goal.y - problem.start.y;
-  if (std::hypot(dx, dy) < 1e-6 &&
-      std::abs(wrapAngle(problem.goal.heading - problem.start.heading)) < 1e-6) {
-    return "start and goal are the same pose: there is nothing to solve";
-  }
   return std::nullopt;
 }
 

@@ -8,6 +8,7 @@
 #include "terratraj/ocp/newton_solver.hpp"
 #include "terratraj/ocp/path_constraints.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
+#include "terratraj/ocp/start_at_goal.hpp"
 
 namespace terratraj::ocp {
 namespace {
@@ -96,6 +97,24 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
     if (!timed) solution.total_time_ms = elapsed_ms();
     return solution;
   };
+  if (startMeetsGoal(problem, options.criteria)) {
+    // Nothing to drive: the one-row trajectory at the start, judged like any other.
+    solution.solver.status = SolveStatus::kConverged;
+    if (std::optional<models::Trajectory> here = startOnlyTrajectory(vehicle, problem)) {
+      solution.verified.ok = true;
+      solution.verified.trajectory = std::move(*here);
+      solution.verified.max_speed = problem.start.v;
+      solution.verdict = models::judgeTrajectory(
+          solution.verified.trajectory, solveRequirements(vehicle, problem, options.criteria, map));
+    }
+    const SolveStatus status = solution.verified.ok
+                                   ? statusAfterVerdict(SolveStatus::kConverged, solution.verdict)
+                                   : SolveStatus::kInfeasible;
+    return finish(status,
+                  status == SolveStatus::kConverged
+                      ? "the start already meets the goal: nothing to drive"
+                      : "the start meets the goal but fails the check: " + solution.verdict.reason);
+  }
   if (const std::optional<std::string> problem_error = validateProblem(problem)) {
     return finish(SolveStatus::kInfeasible, *problem_error);
   }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "terratraj/ocp/solution_verdict.hpp"
+#include "terratraj/ocp/start_at_goal.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
 
 namespace terratraj::ocp {
@@ -105,6 +106,23 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
   if (std::optional<std::string> why = validateTranscriptionSolveOptions(options)) {
     out.status = SolveStatus::kError;
     out.reason = *why;
+    return finish();
+  }
+  if (startMeetsGoal(problem, options.criteria)) {
+    // Nothing to drive: the one-row trajectory at the start, judged like any other.
+    if (std::optional<models::Trajectory> here = startOnlyTrajectory(vehicle, problem)) {
+      out.verified.ok = true;
+      out.verified.trajectory = std::move(*here);
+      out.verdict = models::judgeTrajectory(
+          out.verified.trajectory,
+          solveRequirements(vehicle, problem, options.criteria, options.map));
+    }
+    out.status = out.verified.ok ? statusAfterVerdict(SolveStatus::kConverged, out.verdict)
+                                 : SolveStatus::kInfeasible;
+    out.solution.result.status = out.status;
+    out.reason = out.status == SolveStatus::kConverged
+                     ? "the start already meets the goal: nothing to drive"
+                     : "the start meets the goal but fails the check: " + out.verdict.reason;
     return finish();
   }
   const auto left = [&]() -> std::optional<double> {

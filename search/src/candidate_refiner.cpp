@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "terratraj/ocp/solution_verdict.hpp"
+#include "terratraj/ocp/start_at_goal.hpp"
 #include "terratraj/ocp/transcription_guess.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
 #include "terratraj/ocp/transcription_solver.hpp"
@@ -401,6 +402,25 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   if (std::optional<std::string> why = validateRefinementOptions(options_)) {
     return finish(ocp::SolveStatus::kError, "refinement options: " + *why);
   }
+  if (ocp::startMeetsGoal(*bvp_, options_.parametric.criteria)) {
+    // Nothing to drive: the one-row trajectory at the start, whatever the candidate.
+    out.method_rule = "the start already meets the goal: nothing to drive";
+    if (std::optional<models::Trajectory> here =
+            ocp::startOnlyTrajectory(*problem_->vehicle, *bvp_)) {
+      out.verified.ok = true;
+      out.verified.trajectory = std::move(*here);
+      out.verdict = models::judgeTrajectory(out.verified.trajectory, refined_requirements_);
+      out.refined_figures = figuresOf(out.verified.trajectory);
+      out.refined_figures->check = out.verdict.check;
+      out.homotopy_kept = true;
+    }
+    const ocp::SolveStatus status =
+        out.verified.ok ? ocp::statusAfterVerdict(ocp::SolveStatus::kConverged, out.verdict)
+                        : ocp::SolveStatus::kInfeasible;
+    return finish(status,
+                  status == ocp::SolveStatus::kConverged ? out.method_rule : out.verdict.reason);
+  }
+
   if (std::optional<std::string> why = candidateError(candidate, problem_->map->geometry())) {
     return finish(ocp::SolveStatus::kError, *why);
   }

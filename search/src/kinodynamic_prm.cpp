@@ -234,8 +234,13 @@ PlanResult KinodynamicPrm::solve(TerminationCondition condition) {
     root.state = problem_->start;
     addNode(root);
     if (goal.contains(root.state)) {
-      recordSolution(0, nullptr, 0.0, elapsed_ms(), result);
-    } else if ((root.state.position - goal.position).norm() <= options_.goal_connection_radius_m) {
+      // Nothing to drive (every planner): the one-row trajectory, at once.
+      planStartInGoal(*problem_, result);
+      result.nodes = roadmap_.size();
+      result.planning_time_ms = elapsed_ms();
+      return result;
+    }
+    if ((root.state.position - goal.position).norm() <= options_.goal_connection_radius_m) {
       tryGoalConnection(0, elapsed_ms(), result);
     }
     std::size_t iterations = 0;

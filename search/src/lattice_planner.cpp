@@ -40,7 +40,7 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) const {
     return finish(result);
   }
   if (graph.inGoal(graph.start())) {
-    result.reason = "the start lies in the goal region: nothing to plan";
+    planStartInGoal(graph.problem(), result);  // nothing to drive: the one-row trajectory
     return finish(result);
   }
   const bool anytime = options_.algorithm == LatticeAlgorithm::kAraStar;

@@ -39,6 +39,36 @@ void concludePlan(PlanResult& result) {
   result.reason = reason.str();
 }
 
+void planStartInGoal(const PlanningProblem& problem, PlanResult& result) {
+  models::Trajectory here;
+  here.has_column.fill(true);
+  models::AttitudeWorkspace workspace;
+  models::AttitudeResult attitude;
+  const PlannerState& s = problem.start;
+  if (problem.vehicle->compute({s.position.x(), s.position.y(), s.heading}, workspace, attitude) ==
+      models::AttitudeStatus::kOk) {
+    models::TrajectorySample sample;
+    sample.t = 0.0;
+    sample.x = s.position.x();
+    sample.y = s.position.y();
+    sample.z = attitude.attitude.z;
+    sample.heading = s.heading;
+    sample.roll = attitude.attitude.roll;
+    sample.pitch = attitude.attitude.pitch;
+    sample.v = s.v;
+    sample.curvature = s.curvature;
+    sample.omega = s.v * s.curvature;
+    here.samples.push_back(sample);
+  }
+  PlanSolution solution;
+  solution.trajectory = std::move(here);
+  solution.proven_optimal = true;
+  result.first_solution_ms = 0.0;
+  result.first_solution_cost_s = 0.0;
+  admitSolution(requirementsOf(problem), std::move(solution), result);
+  concludePlan(result);
+}
+
 void applyPlanVerdict(const PlanningProblem& problem, PlanResult& result) {
   if (result.status != PlanStatus::kSolved) return;
   std::vector<PlanSolution> found = std::move(result.solutions);

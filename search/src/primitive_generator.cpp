@@ -157,20 +157,27 @@ std::optional<MotionPrimitive> solvePrimitive(double start_heading, const Eigen:
                                               const models::VehicleLimits& limits,
                                               double sample_spacing, int max_iterations) {
   static thread_local FlatWorld world;
+  if (!(speed > 0.0) || !std::isfinite(speed)) return std::nullopt;
+  // A constant-speed primitive's path depends on the speed only through the bounds per arc
+  // length (kappa <= omega_max / v, dkappa/ds <= sigma_max / v): it is solved at 1 m/s with
+  // those bounds, and its times are scaled by 1 / speed. The solver's scaling then does not
+  // depend on the speed (at 0.01 m/s its final time would be a hundred times longer).
   ocp::BoundaryValueProblem problem;
-  problem.start = {0.0, 0.0, start_heading, speed, 0.0};
+  problem.start = {0.0, 0.0, start_heading, 1.0, 0.0};
   // Unwrap the goal heading to the turn nearest the straight line's.
   const double turn = std::remainder(end_heading - start_heading, kTwoPi);
-  problem.goal = {end.x(), end.y(), start_heading + turn, speed, 0.0};
+  problem.goal = {end.x(), end.y(), start_heading + turn, 1.0, 0.0};
   problem.cost.kind = ocp::CostKind::kTime;
   problem.limits = limits;
-  problem.limits.v_max = speed * (1.0 + 1e-9);
-  problem.limits.a_max = std::max(limits.a_max, 1.0);
+  problem.limits.v_max = 1.0 + 1e-9;
+  problem.limits.omega_max = limits.omega_max / speed;
+  problem.limits.sigma_max = limits.sigma_max / speed;
+  problem.limits.a_max = std::max(limits.a_max / speed, 1.0);
   if (ocp::validateProblem(problem)) return std::nullopt;
   ocp::BoundaryValueOptions options;
   options.method = ocp::BoundaryValueMethod::kIpopt;  // enforces sigma_max, kappa_max
   options.max_iterations = max_iterations;
-  options.verification.sample_dt = std::min(0.01, 0.25 * sample_spacing / speed);
+  options.verification.sample_dt = std::min(0.01, 0.25 * sample_spacing);
   const ocp::BoundaryValueSolution solution =
       ocp::solveBoundaryValue(world.model, problem, options, nullptr);
   if (solution.status != ocp::SolveStatus::kConverged || !solution.verified.ok ||
@@ -179,6 +186,7 @@ std::optional<MotionPrimitive> solvePrimitive(double start_heading, const Eigen:
   }
   MotionPrimitive p;
   p.samples = resample(solution.verified.trajectory, sample_spacing);
+  for (PrimitiveSample& q : p.samples) q.t /= speed;
   // Snap: spread the solver's terminal error (< 1 mm) along the arc so the end is exact.
   const PrimitiveSample last = p.samples.back();
   const double length = last.s;
@@ -233,6 +241,11 @@ PrimitiveGenerationResult generatePrimitives(const LatticeSpec& lattice,
   }
 
   for (int k = 0; k < solved_headings; ++k) {
+    if (options.stop != nullptr && options.stop->load()) {
+      result.failures.push_back("stopped (interrupt) before heading " + std::to_string(k));
+      break;
+    }
+    if (options.progress) options.progress(k, solved_headings);
     const double heading = lattice.headingAngle(k);
     std::set<std::tuple<int, int, int>> seen;  // (end heading, dx, dy)
     for (const auto& [turn, reference] : requests) {

@@ -106,7 +106,7 @@ PlanResult TaeaslPlanner::solve(TerminationCondition termination) const {
     return finish(result);
   }
   if (graph.inGoal(graph.start())) {
-    result.reason = "the start lies in the goal region: nothing to plan";
+    planStartInGoal(graph.problem(), result);  // nothing to drive: the one-row trajectory
     return finish(result);
   }
   const double w = std::max(1.0, options_.heuristic_weight);

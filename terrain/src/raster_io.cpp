@@ -4,7 +4,10 @@
 #include <gdal_priv.h>
 
 #include <array>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -125,11 +128,12 @@ RasterPlacement placeRaster(GDALDataset& dataset, const std::filesystem::path& p
   return placement;
 }
 
-// Reads band 1 into `layer` (south row first), mapping the no-data value to NaN and applying
-// z_scale. Returns the number of cells holding data.
+// Reads band `band_index` (from 1) into `layer` (south row first), mapping the no-data value to
+// NaN and applying z_scale. Returns the number of cells holding data.
 std::size_t readBand(GDALDataset& dataset, const std::filesystem::path& path,
-                     const RasterPlacement& placement, double z_scale, GridLayer& layer) {
-  GDALRasterBand* band = dataset.GetRasterBand(1);
+                     const RasterPlacement& placement, double z_scale, GridLayer& layer,
+                     int band_index = 1) {
+  GDALRasterBand* band = dataset.GetRasterBand(band_index);
   int has_no_data = 0;
   const double no_data = band->GetNoDataValue(&has_no_data);
   const bool no_data_is_nan = has_no_data != 0 && std::isnan(no_data);
@@ -154,8 +158,10 @@ std::size_t readBand(GDALDataset& dataset, const std::filesystem::path& path,
       if (!std::isfinite(value) || !std::isfinite(scaled) ||
           std::abs(scaled) > std::numeric_limits<float>::max()) {
         std::ostringstream message;
-        message << "height " << value << " at raster row " << gdal_row << ", column " << col
-                << " is not a finite number (declare it as the band's no-data value if it "
+        message << (band_index == 1 ? "height " : "value ") << value << " at raster row "
+                << gdal_row + 1 << ", column " << col + 1 << " (from 1"
+                << (band_index == 1 ? "" : ", band " + std::to_string(band_index))
+                << ") is not a finite number (declare it as the band's no-data value if it "
                    "marks missing data)";
         fail(path, message.str());
       }
@@ -166,15 +172,88 @@ std::size_t readBand(GDALDataset& dataset, const std::filesystem::path& path,
   return valid;
 }
 
+// The first band (from 1) described `name`, or 0.
+int bandDescribed(GDALDataset& dataset, const char* name) {
+  for (int b = 1; b <= dataset.GetRasterCount(); ++b) {
+    const char* description = dataset.GetRasterBand(b)->GetDescription();
+    if (description != nullptr && std::string(description) == name) return b;
+  }
+  return 0;
+}
+
+// GDAL's ESRI ASCII reader turns a cell it cannot parse ("abc", "nan", "inf") into 0 m: every
+// cell is checked here first. A cell must be a finite number or the declared NODATA_value.
+void checkAsciiGrid(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) fail(path, "cannot be opened for reading");
+  std::string token;
+  long long cols = 0;
+  std::string no_data;
+  bool has_no_data = false;
+  // The header: key value pairs until the first number.
+  std::string first_value;
+  while (in >> token) {
+    std::string key = token;
+    for (char& c : key) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool header_key = key == "ncols" || key == "nrows" || key == "xllcorner" ||
+                            key == "yllcorner" || key == "xllcenter" || key == "yllcenter" ||
+                            key == "cellsize" || key == "dx" || key == "dy" ||
+                            key == "nodata_value";
+    if (!header_key) {
+      first_value = token;
+      break;
+    }
+    std::string value;
+    if (!(in >> value)) fail(path, "the header ends after '" + token + "'");
+    if (key == "ncols") cols = std::atoll(value.c_str());
+    if (key == "nodata_value") {
+      no_data = value;
+      has_no_data = true;
+    }
+  }
+  if (cols <= 0) return;  // GDAL reports a broken header itself
+  char* end = nullptr;
+  const double no_data_value = has_no_data ? std::strtod(no_data.c_str(), &end) : 0.0;
+  long long index = 0;
+  const auto check = [&](const std::string& cell) {
+    char* stop = nullptr;
+    const double value = std::strtod(cell.c_str(), &stop);
+    const bool number = !cell.empty() && stop == cell.c_str() + cell.size();
+    const bool declared_no_data =
+        has_no_data && (cell == no_data || (number && value == no_data_value));
+    if (!declared_no_data && (!number || !std::isfinite(value))) {
+      std::ostringstream message;
+      message << "cell '" << cell << "' at data row " << index / cols + 1 << ", column "
+              << index % cols + 1
+              << " is not a finite number (ESRI ASCII grid; a missing value must be the "
+                 "header's NODATA_value"
+              << (has_no_data ? " " + no_data : std::string()) << ")";
+      fail(path, message.str());
+    }
+    ++index;
+  };
+  if (!first_value.empty()) check(first_value);
+  while (in >> token) check(token);
+}
+
 struct RasterContents {
   RasterPlacement placement;
   std::string projection_wkt;
   std::unique_ptr<ElevationMap> map;
   std::size_t valid_cells = 0;
+  int lethal_band = 0;              ///< the band described "lethal", 0 if none
+  std::unique_ptr<GridLayer> band;  ///< the extra band asked for
 };
 
+// Which extra band readRaster() reads besides band 1.
+struct ExtraBand {
+  std::optional<int> number;    ///< this band (from 1) ...
+  bool lethal_by_name = false;  ///< ... else the band described "lethal", if any
+};
+
+// Reads band 1 (heights, with z_scale) and the extra band, if any (unscaled).
 RasterContents readRaster(const std::filesystem::path& path, const RasterLoadOptions& options,
-                          Georeferencing georeferencing) {
+                          Georeferencing georeferencing, const ExtraBand& extra = {}) {
   QuietGdalErrors quiet;
   if (!std::isfinite(options.z_scale) || options.z_scale == 0.0) {
     std::ostringstream message;
@@ -182,6 +261,10 @@ RasterContents readRaster(const std::filesystem::path& path, const RasterLoadOpt
     fail(path, message.str());
   }
   GDALDatasetUniquePtr dataset = openRaster(path);
+  GDALDriver* driver = dataset->GetDriver();
+  if (driver != nullptr && std::string(driver->GetDescription()) == "AAIGrid") {
+    checkAsciiGrid(path);
+  }
   RasterContents contents;
   contents.placement = placeRaster(*dataset, path, options, georeferencing);
   const char* wkt = dataset->GetProjectionRef();
@@ -195,23 +278,46 @@ RasterContents readRaster(const std::filesystem::path& path, const RasterLoadOpt
   contents.valid_cells =
       readBand(*dataset, path, contents.placement, options.z_scale, contents.map->elevation());
   contents.map->setProjectionWkt(contents.projection_wkt);
+  contents.lethal_band = bandDescribed(*dataset, layer_names::kLethal);
+  const int band = extra.number                                       ? *extra.number
+                   : extra.lethal_by_name && contents.lethal_band > 1 ? contents.lethal_band
+                                                                      : 0;
+  if (band != 0 || extra.number) {
+    if (band < 1 || band > dataset->GetRasterCount()) {
+      fail(path, "has no band " + std::to_string(band) + " (it has " +
+                     std::to_string(dataset->GetRasterCount()) + ")");
+    }
+    contents.band = std::make_unique<GridLayer>(contents.placement.geometry.rows,
+                                                contents.placement.geometry.cols, 0.0f);
+    readBand(*dataset, path, contents.placement, 1.0, *contents.band, band);
+  }
   return contents;
 }
 
 }  // namespace
 
 ElevationMap loadElevationMap(const std::filesystem::path& path, const RasterLoadOptions& options) {
-  RasterContents contents = readRaster(path, options, Georeferencing::kRequired);
+  // A raster terratraj wrote: its lethal band comes back as the lethal layer.
+  RasterContents contents =
+      readRaster(path, options, Georeferencing::kRequired, ExtraBand{std::nullopt, true});
   if (contents.valid_cells == 0) fail(path, "holds no valid height (every cell is no-data)");
+  if (contents.band) {
+    GridLayer& lethal = contents.map->addLayer(layer_names::kLethal, 0.0f);
+    for (std::size_t i = 0; i < lethal.size(); ++i) {
+      const float value = contents.band->values()[i];
+      lethal.values()[i] = value != 0.0f && !std::isnan(value) ? 1.0f : 0.0f;
+    }
+  }
   return std::move(*contents.map);
 }
 
 GridLayer loadLethalRaster(const std::filesystem::path& path, const GridGeometry& geometry,
-                           const RasterLoadOptions& options) {
+                           const RasterLoadOptions& options, std::optional<int> band) {
   RasterLoadOptions lethal_options = options;
   lethal_options.z_scale = 1.0;
-  const RasterContents contents = readRaster(path, lethal_options, Georeferencing::kOptional);
-  const GridLayer& source = contents.map->elevation();
+  const RasterContents contents =
+      readRaster(path, lethal_options, Georeferencing::kOptional, ExtraBand{band, true});
+  const GridLayer& source = contents.band ? *contents.band : contents.map->elevation();
   GridLayer lethal(geometry.rows, geometry.cols, 0.0f);
   const auto is_lethal = [](float value) { return value != 0.0f && !std::isnan(value); };
   if (source.rows() == geometry.rows && source.cols() == geometry.cols) {

@@ -27,11 +27,21 @@ ElevationMap loadHeights(const TerrainSource& source) {
 
 ElevationMap loadTerrain(const TerrainSource& source) {
   ElevationMap map = loadHeights(source);
-  if (source.obstacles.file) {
-    RasterLoadOptions lethal_options;
-    lethal_options.max_cells = source.raster.max_cells;
-    markLethalFromLayer(map,
-                        loadLethalRaster(*source.obstacles.file, map.geometry(), lethal_options));
+  RasterLoadOptions lethal_options;
+  lethal_options.max_cells = source.raster.max_cells;
+  try {
+    if (source.obstacles.file) {
+      markLethalFromLayer(map, loadLethalRaster(*source.obstacles.file, map.geometry(),
+                                                lethal_options, source.obstacles.band));
+    } else if (source.obstacles.band) {
+      if (!source.file) throw InputError("needs terrain.file (a raster)");
+      lethal_options.cell = source.raster.cell;
+      markLethalFromLayer(map, loadLethalRaster(*source.file, map.geometry(), lethal_options,
+                                                source.obstacles.band));
+    }
+  } catch (const InputError& error) {
+    throw InputError(std::string("terrain.obstacles") +
+                     (source.obstacles.band ? ".band" : ".file") + ": " + error.what());
   }
   if (source.obstacles.max_slope) markLethalBySlope(map, *source.obstacles.max_slope);
   return map;

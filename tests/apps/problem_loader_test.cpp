@@ -503,7 +503,7 @@ TEST(ProblemLoader, CellWithGenerateRejected) {
 
 TEST(ProblemLoader, EmptyObstaclesRejected) {
   EXPECT_THAT(parseError(withTerrain("{file: a.tif, obstacles: {}}")),
-              HasSubstr("terrain.obstacles: give file and/or max_slope_deg"));
+              HasSubstr("terrain.obstacles: give file, band and/or max_slope_deg"));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -277,3 +277,94 @@ TEST_F(RasterIoTest, TerrainSourceCombinesHeightsAndObstacles) {
 
 }  // namespace
 }  // namespace terratraj::terrain
+
+namespace terratraj::terrain {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+fs::path freshFolder(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("terratraj_raster_roundtrip_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// What `terrain generate` writes (heights + lethal band) reads back whole, with no extra key;
+// obstacles.band picks a band explicitly, and obstacles.file on such a raster reads its lethal
+// band, not its heights.
+TEST(RasterRoundTrip, AGeneratedRasterKeepsItsLethalBand) {
+  const fs::path dir = freshFolder("generated");
+  GeneratorOptions generator;
+  generator.kind = TerrainKind::kCorridor;
+  generator.rows = generator.cols = 64;
+  const ElevationMap generated = generateTerrain(generator);
+  const GridLayer* lethal = generated.findLayer(layer_names::kLethal);
+  ASSERT_NE(lethal, nullptr);
+  std::size_t lethal_cells = 0;
+  for (float v : lethal->values()) lethal_cells += v != 0.0f ? 1 : 0;
+  ASSERT_GT(lethal_cells, 0u);
+  saveGeoTiff(generated, dir / "corridor.tif");
+
+  const ElevationMap back = loadElevationMap(dir / "corridor.tif");
+  const GridLayer* read = back.findLayer(layer_names::kLethal);
+  ASSERT_NE(read, nullptr);
+  EXPECT_EQ(read->values(), lethal->values());
+
+  // obstacles.file on the same raster: its lethal band (every cell lethal with band 1 would be
+  // the old trap: heights are non-zero).
+  TerrainSource source;
+  source.generate = generator;
+  source.generate->kind = TerrainKind::kFlat;
+  source.obstacles.file = dir / "corridor.tif";
+  const ElevationMap flat = loadTerrain(source);
+  std::size_t flat_lethal = 0;
+  for (float v : flat.findLayer(layer_names::kLethal)->values()) flat_lethal += v != 0.0f;
+  EXPECT_EQ(flat_lethal, lethal_cells);
+
+  // obstacles.band of the terrain's own raster.
+  TerrainSource banded;
+  banded.file = dir / "corridor.tif";
+  banded.obstacles.band = 2;
+  const ElevationMap with_band = loadTerrain(banded);
+  EXPECT_EQ(with_band.findLayer(layer_names::kLethal)->values(), lethal->values());
+  banded.obstacles.band = 3;
+  try {
+    loadTerrain(banded);
+    ADD_FAILURE() << "band 3 of a 2-band raster was accepted";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("terrain.obstacles.band"));
+    EXPECT_THAT(error.what(), HasSubstr("no band 3"));
+  }
+  fs::remove_all(dir);
+}
+
+// An ESRI ASCII grid cell that is not a number (GDAL reads it as 0 m) is refused, naming the
+// file, the data row and the column; the declared NODATA_value is not.
+TEST(RasterRoundTrip, AsciiGridCellsMustBeNumbers) {
+  const fs::path dir = freshFolder("ascii");
+  const auto grid = [&](const std::string& cell) {
+    std::ofstream out(dir / "grid.asc");
+    out << "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n"
+        << "1 2 3\n4 " << cell << " 6\n7 8 9\n";
+    return dir / "grid.asc";
+  };
+  for (const char* bad : {"abc", "nan", "inf", "-inf", "1.5x"}) {
+    SCOPED_TRACE(bad);
+    try {
+      loadElevationMap(grid(bad));
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& error) {
+      EXPECT_THAT(error.what(), HasSubstr("grid.asc"));
+      EXPECT_THAT(error.what(), HasSubstr("data row 2, column 2"));
+    }
+  }
+  const ElevationMap ok = loadElevationMap(grid("-9999"));
+  EXPECT_TRUE(std::isnan(ok.elevation()(1, 1)));  // row 1 from the south = the middle row
+  EXPECT_FLOAT_EQ(ok.elevation()(0, 0), 7.0f);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace terratraj::terrain

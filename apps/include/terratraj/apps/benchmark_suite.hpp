@@ -45,6 +45,8 @@ class BenchmarkSuite {
   virtual nlohmann::json summarize(const nlohmann::json& rows) const = 0;
   /// A few lines a person reads on stdout.
   virtual std::string summaryText(const nlohmann::json& summary) const = 0;
+  /// The files the cases will read (checked before any case runs).
+  virtual std::vector<std::filesystem::path> inputFiles() const { return {}; }
 };
 
 /// "convergence", "planners", "refine", "tables".
@@ -60,6 +62,9 @@ std::unique_ptr<BenchmarkSuite> makeTablesSuite(const BenchmarkSettings& setting
 
 /// {"count", "median", "p90", "min", "max", "mean"} of `values` ({"count": 0} when empty).
 nlohmann::json distributionJson(std::vector<double> values);
+/// `distribution[key]` for a summary line, or "n/a" when it is absent or null (an empty
+/// distribution, an undefined ratio): never a 0 that was not measured.
+std::string figureText(const nlohmann::json& distribution, const char* key);
 /// Wall time since `start` [ms].
 double millisecondsSince(std::chrono::steady_clock::time_point start);
 

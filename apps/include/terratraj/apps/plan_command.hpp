@@ -41,6 +41,10 @@ class ProblemScene;
 /// the key when it is invalid.
 search::PlanningProblem planningProblem(const ProblemSpec& problem, const ProblemScene& scene);
 
+/// For the lattice planners: throws InputError naming the tolerance key when no lattice
+/// position or heading lies in the goal region (planner.lattice_resolution_m, heading_count).
+void checkLatticeGoal(const ProblemSpec& problem, const terrain::GridGeometry& geometry);
+
 /// A finished `plan` run: its report and exit status.
 struct PlanRun {
   nlohmann::json report;

@@ -25,8 +25,18 @@ models::AttitudeResult restingAttitude(const models::TerrainFollowingModel& mode
                                        const BoundaryState& state, const char* which,
                                        const ProblemSpec& problem);
 
-/// Loads the problem and its terrain and checks the start and goal against it. Throws
-/// InputError naming the file / key / value at fault.
+class ProblemScene;
+
+/// The checks `solve`, `plan` and `refine` apply to a loaded problem before their work, beyond
+/// the scene's own (terrain, tables, start and goal poses and attitudes): the transcription
+/// settings (solve with shooting / collocation), the planning problem (plan, refine), the
+/// lattice goal region (plan with a lattice planner), the refinement settings (refine). Throws
+/// InputError naming the key and the commands that refuse it.
+void checkForEveryCommand(const ProblemSpec& problem, const ProblemScene& scene);
+
+/// Loads the problem and its terrain and applies exactly the checks of `solve`, `plan` and
+/// `refine` (ProblemScene, checkForEveryCommand). Throws InputError naming the file / key /
+/// value at fault.
 int runCheck(const CheckOptions& options, CommandContext& context);
 
 }  // namespace terratraj::apps

@@ -215,7 +215,10 @@ struct SolverSpec {
 /// `planner`: the global planner.
 struct PlannerSpec {
   PlannerKind kind = PlannerKind::kPrm;
-  double time_limit_s = 1.0;               ///< wall-clock budget [s], >= 0
+  double time_limit_s = 1.0;  ///< wall-clock budget [s], >= 0
+  /// Iteration budget (PRM milestones, lattice expansions), >= 1; absent: none. With it and a
+  /// time limit that is not reached, the same seed gives the same files.
+  std::optional<int> max_iterations;
   std::uint64_t seed = 1;                  ///< random seed
   int homotopy_classes = 3;                ///< taeasl: most distinct classes returned, >= 1
   double frame_radius_m = 10.0;            ///< taeasl: frame radius [m], > 0

@@ -61,7 +61,8 @@ struct BoundaryValueProblem {
 /// is zero throughout), or std::nullopt when it can.
 std::optional<std::string> validateProblem(const BoundaryValueProblem& problem);
 /// The part of validateProblem that does not depend on the control parametrisation (finite
-/// states, alpha >= 0, start and goal distinct): what direct transcription needs.
+/// states, alpha >= 0): what direct transcription needs. Start == goal is not an error
+/// (start_at_goal.hpp).
 std::optional<std::string> validateBoundaryStates(const BoundaryValueProblem& problem);
 
 /// Heading difference a - b wrapped to (-pi, pi] [rad].

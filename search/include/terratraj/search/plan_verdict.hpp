@@ -21,6 +21,11 @@ bool admitSolution(const models::TrajectoryRequirements& requirements, PlanSolut
 /// were found but all rejected (the planner's own reason is kept otherwise).
 void concludePlan(PlanResult& result);
 
+/// The answer when the start already lies in the goal region (every planner, docs/usage.md):
+/// one solution, the one-row trajectory at the start (cost 0), judged by admitSolution(), then
+/// concludePlan().
+void planStartInGoal(const PlanningProblem& problem, PlanResult& result);
+
 /// admitSolution() for every solution of `result` (a kSolved result with an empty `solutions`
 /// list is first given one from `trajectory`), then concludePlan().
 void applyPlanVerdict(const PlanningProblem& problem, PlanResult& result);

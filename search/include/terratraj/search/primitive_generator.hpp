@@ -13,6 +13,8 @@
 // the primitives of headings k + heading_count / 4 are those of k rotated by 90 degrees (exact
 // on the grid), so only a quarter of the headings are solved.
 
+#include <atomic>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +35,11 @@ struct PrimitiveGenerationOptions {
   int attempts = 4;              ///< tries per primitive (candidate offsets, shortest first), >= 1
   double sample_spacing = 0.05;  ///< stored sample spacing [m], > 0
   int max_iterations = 100;      ///< of each boundary-value solve
+  /// Called after each solved heading with (headings done, headings to solve); may be empty.
+  /// The generation takes seconds: the CLI prints a progress line from it.
+  std::function<void(int, int)> progress;
+  /// Set from outside (SIGINT) to stop: the headings not yet solved get no primitive.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 /// A generated set and what failed.

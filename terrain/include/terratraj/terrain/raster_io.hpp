@@ -28,20 +28,26 @@ struct RasterLoadOptions {
   std::size_t max_cells = std::size_t{1} << 28;
 };
 
-/// Loads band 1 of a raster as heights. Throws InputError when the file is missing or not a
-/// raster GDAL reads, the geotransform is rotated / non-square / absent (and no `cell` was
-/// given), the grid is smaller than 2 x 2 or larger than max_cells, a value is NaN or infinite
-/// without being the declared no-data value, or no cell holds data.
+/// Loads band 1 of a raster as heights. A band whose description is "lethal" (what
+/// saveGeoTiff() writes for the lethal layer: `terrain generate`, `demo`) comes back as the
+/// lethal layer (non-zero = lethal). Throws InputError when the file is missing or not a raster
+/// GDAL reads, the geotransform is rotated / non-square / absent (and no `cell` was given), the
+/// grid is smaller than 2 x 2 or larger than max_cells, a value is NaN or infinite without
+/// being the declared no-data value (and for an ESRI ASCII grid, a cell that is not a number:
+/// the message gives the data row and column, from 1), or no cell holds data.
 ElevationMap loadElevationMap(const std::filesystem::path& path,
                               const RasterLoadOptions& options = {});
 
 /// Loads a lethal-cell raster (non-zero = lethal; zero and no-data = free) as a layer for a
-/// terrain of `geometry`. A raster of the terrain's rows x cols is taken cell by cell; another
-/// size is sampled by nearest neighbour at the terrain's cell centres in world coordinates
-/// (cells outside it are free), which needs georeferencing. `options.cell` rescales it as for
-/// heights; z_scale is ignored. Throws InputError as loadElevationMap() does.
+/// terrain of `geometry`: band `band` (from 1), or when absent the band described "lethal" if
+/// there is one (a raster terratraj wrote), else band 1. A raster of the terrain's rows x cols is
+/// taken cell by cell; another size is sampled by nearest neighbour at the terrain's cell
+/// centres in world coordinates (cells outside it are free), which needs georeferencing.
+/// `options.cell` rescales it as for heights; z_scale is ignored. Throws InputError as
+/// loadElevationMap() does, and when `band` does not exist.
 GridLayer loadLethalRaster(const std::filesystem::path& path, const GridGeometry& geometry,
-                           const RasterLoadOptions& options = {});
+                           const RasterLoadOptions& options = {},
+                           std::optional<int> band = std::nullopt);
 
 /// Writes the map as a Float32 GeoTIFF: band 1 the heights (no-data NaN), then one band per
 /// other layer, each band's description its layer name. Throws InputError when the file cannot

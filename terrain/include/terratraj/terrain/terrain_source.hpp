@@ -20,7 +20,10 @@ enum class CoordinateFrame {
 /// Where the lethal layer comes from; both may be given, and their union is lethal.
 struct ObstacleSource {
   std::optional<std::filesystem::path> file;  ///< raster, non-zero = lethal
-  std::optional<double> max_slope;            ///< [rad] cells steeper than this are lethal
+  /// Band of `file` (from 1), or of the terrain's own raster when `file` is absent; absent: the
+  /// band described "lethal" (a raster terratraj wrote), else band 1 of `file`.
+  std::optional<int> band;
+  std::optional<double> max_slope;  ///< [rad] cells steeper than this are lethal
 };
 
 /// A terrain: exactly one of `file` and `generate`.
