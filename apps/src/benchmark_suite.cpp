@@ -51,7 +51,7 @@ BenchmarkSettings BenchmarkSettings::fromJson(const nlohmann::json& json,
 }
 
 std::vector<std::string> benchmarkSuiteNames() {
-  return {"convergence", "planners", "refine", "tables"};
+  return {"convergence", "robustness", "planners", "refine", "tables"};
 }
 
 std::unique_ptr<BenchmarkSuite> makeBenchmarkSuite(const std::string& name,
@@ -64,8 +64,9 @@ std::unique_ptr<BenchmarkSuite> makeBenchmarkSuite(const std::string& name,
   if (name == "planners") return makePlannersSuite(settings);
   if (name == "refine") return makeRefineSuite(settings);
   if (name == "tables") return makeTablesSuite(settings);
+  if (name == "robustness") return makeRobustnessSuite(settings);
   throw InputError("unknown benchmark suite '" + name +
-                   "' (convergence, planners, refine, tables)");
+                   "' (convergence, robustness, planners, refine, tables)");
 }
 
 nlohmann::json distributionJson(std::vector<double> values) {

@@ -3,13 +3,14 @@
 #include <spdlog/sinks/ostream_sink.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <new>
 #include <optional>
 #include <ostream>
-#include <regex>
 #include <sstream>
 #include <string>
 
@@ -75,19 +76,49 @@ std::string kindsHelp() {
 
 // Numbers on the command line are read as the problem file reads them: decimal only. CLI11
 // alone would take "0x1" for 1 and wrap "-1" into 2^64 - 1 for an unsigned seed.
+// Grammar: [+-] (digits [. digits*] | . digits) [(e|E) [+-] digits].
+bool isDecimalNumber(const std::string& text) {
+  std::size_t at = 0;
+  const auto digitsFrom = [&text](std::size_t from) {
+    std::size_t end = from;
+    while (end < text.size() && std::isdigit(static_cast<unsigned char>(text[end])) != 0) ++end;
+    return end - from;
+  };
+  if (at < text.size() && (text[at] == '+' || text[at] == '-')) ++at;
+  const std::size_t whole = digitsFrom(at);
+  at += whole;
+  std::size_t fraction = 0;
+  if (at < text.size() && text[at] == '.') {
+    fraction = digitsFrom(at + 1);
+    at += 1 + fraction;
+  }
+  if (whole == 0 && fraction == 0) return false;
+  if (at < text.size() && (text[at] == 'e' || text[at] == 'E')) {
+    ++at;
+    if (at < text.size() && (text[at] == '+' || text[at] == '-')) ++at;
+    const std::size_t exponent = digitsFrom(at);
+    if (exponent == 0) return false;
+    at += exponent;
+  }
+  return at == text.size();
+}
+
+bool isWholeNumber(const std::string& text) {
+  const std::size_t first = (!text.empty() && text[0] == '+') ? 1 : 0;
+  if (first == text.size()) return false;
+  return std::all_of(text.begin() + static_cast<std::ptrdiff_t>(first), text.end(),
+                     [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; });
+}
+
 const CLI::Validator kDecimal(
     [](std::string& text) -> std::string {
-      static const std::regex decimal(R"(^[+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?$)");
-      return std::regex_match(text, decimal) ? std::string()
-                                             : "'" + text + "' is not a decimal number";
+      return isDecimalNumber(text) ? std::string() : "'" + text + "' is not a decimal number";
     },
     "DECIMAL");
 const CLI::Validator kCount(
     [](std::string& text) -> std::string {
-      static const std::regex digits(R"(^\+?[0-9]+$)");
-      return std::regex_match(text, digits)
-                 ? std::string()
-                 : "'" + text + "' is not a whole number >= 0 (decimal digits)";
+      return isWholeNumber(text) ? std::string()
+                                 : "'" + text + "' is not a whole number >= 0 (decimal digits)";
     },
     "INTEGER >= 0");
 

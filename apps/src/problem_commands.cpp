@@ -113,7 +113,10 @@ nlohmann::json problemJson(const ProblemSpec& problem) {
       {"cost", {{"kind", costKindName(problem.cost.kind)}, {"alpha", problem.cost.alpha}}},
       {"solver",
        {{"method", solverMethodName(problem.solver.method)},
-        {"intervals", problem.solver.intervals},
+        {"intervals", problem.solver.intervals ? nlohmann::json(*problem.solver.intervals)
+                                               : nlohmann::json("auto")},
+        {"initial_guess",
+         problem.solver.initial_guess == InitialGuessKind::kFlat ? "flat" : "auto"},
         {"max_iterations", problem.solver.max_iterations},
         {"tolerance",
          {{"position_m", problem.solver.tolerance_position_m},

@@ -696,13 +696,26 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
   if (const std::optional<Field> method = map.find("method")) {
     solver.method = readEnum<SolverMethod>(ctx, *method, parseSolverMethod, solverMethodNames());
   }
-  map.readIntInto("intervals", kMinIntervals, kMaxIntervals, solver.intervals);
+  if (map.find("intervals")) {
+    int intervals = 40;
+    map.readIntInto("intervals", kMinIntervals, kMaxIntervals, intervals);
+    solver.intervals = intervals;
+  }
   map.readIntInto("max_intervals", kMinIntervals, kMaxIntervals, solver.max_intervals);
-  if (solver.max_intervals < solver.intervals) {
-    map.fail("max_intervals", "must be >= intervals (" + std::to_string(solver.intervals) +
+  if (solver.intervals && solver.max_intervals < *solver.intervals) {
+    map.fail("max_intervals", "must be >= intervals (" + std::to_string(*solver.intervals) +
                                   "), got " + std::to_string(solver.max_intervals));
   }
+  std::string initial_guess = "auto";
+  readChoiceInto(ctx, map, "initial_guess", {"auto", "flat"}, initial_guess);
+  solver.initial_guess =
+      initial_guess == "flat" ? InitialGuessKind::kFlat : InitialGuessKind::kAuto;
   map.readIntInto("max_iterations", kMinIterations, kMaxIterations, solver.max_iterations);
+  if (map.find("transcription_max_iterations")) {
+    int iterations = 1;
+    map.readIntInto("transcription_max_iterations", kMinIterations, kMaxIterations, iterations);
+    solver.transcription_max_iterations = iterations;
+  }
   map.readIntInto("yaw_rate_order", 1, 8, solver.yaw_rate_order);
   map.readIntInto("speed_order", 1, 8, solver.speed_order);
   if (const std::optional<Field> tolerance = map.find("tolerance")) {

@@ -53,6 +53,7 @@ search::RefinementOptions refinementOptions(const ProblemSpec& problem,
   ProblemSpec collocation = problem;
   collocation.solver.method = SolverMethod::kCollocation;
   options.transcription = transcriptionOptions(collocation);
+  options.transcription.intervals = options.min_intervals;  // set per candidate by its length
   options.transcription.max_iterations = spec.max_iterations;
   options.transcription.linear_controls = true;
   options.limit_margin = spec.limit_margin;

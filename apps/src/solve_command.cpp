@@ -17,7 +17,9 @@
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
 #include "terratraj/ocp/start_at_goal.hpp"
+#include "terratraj/ocp/transcription_guess.hpp"
 #include "terratraj/ocp/transcription_solver.hpp"
+#include "terratraj/refine/seeded_solver.hpp"
 #include "terratraj/terrain/clearance_map.hpp"
 #include "terratraj/terrain/input_error.hpp"
 
@@ -36,11 +38,32 @@ std::optional<ocp::BoundaryValueMethod> parametricMethod(SolverMethod method) {
       return ocp::BoundaryValueMethod::kIpopt;
     case SolverMethod::kCeres:
       return ocp::BoundaryValueMethod::kCeres;
+    case SolverMethod::kAuto:
     case SolverMethod::kShooting:
     case SolverMethod::kCollocation:
       return std::nullopt;
   }
   return std::nullopt;
+}
+
+refine::CoreMethod coreMethod(SolverMethod method) {
+  switch (method) {
+    case SolverMethod::kAuto:
+      return refine::CoreMethod::kAuto;
+    case SolverMethod::kNewton:
+      return refine::CoreMethod::kNewton;
+    case SolverMethod::kNewtonFd:
+      return refine::CoreMethod::kNewtonFd;
+    case SolverMethod::kIpopt:
+      return refine::CoreMethod::kIpopt;
+    case SolverMethod::kCeres:
+      return refine::CoreMethod::kCeres;
+    case SolverMethod::kShooting:
+      return refine::CoreMethod::kShooting;
+    case SolverMethod::kCollocation:
+      return refine::CoreMethod::kCollocation;
+  }
+  return refine::CoreMethod::kAuto;
 }
 
 }  // namespace
@@ -121,7 +144,8 @@ ocp::BoundaryValueOptions boundaryValueOptions(const ProblemSpec& problem) {
 }
 
 bool isTranscriptionMethod(SolverMethod method) {
-  return method == SolverMethod::kShooting || method == SolverMethod::kCollocation;
+  return method == SolverMethod::kAuto || method == SolverMethod::kShooting ||
+         method == SolverMethod::kCollocation;
 }
 
 ocp::DirectTranscriptionOptions transcriptionOptions(const ProblemSpec& problem) {
@@ -138,11 +162,11 @@ ocp::DirectTranscriptionOptions transcriptionOptions(const ProblemSpec& problem)
   if (solver.hessian == "limited_memory") {
     options.hessian = ocp::TranscriptionHessian::kLimitedMemory;
   }
-  options.intervals = solver.intervals;
+  options.intervals = solver.intervals.value_or(0);  // 0: by the seed's length (solveSeeded)
   // Piecewise-linear controls on Hermite-Simpson intervals: |v'| <= a_max and |omega'| hold
   // between the points too (the quadratic interpolation of a bang-bang control overshoots).
   options.linear_controls = true;
-  options.max_iterations = solver.max_iterations;
+  options.max_iterations = solver.transcription_max_iterations.value_or(5 * solver.max_iterations);
   options.time_limit_s = solver.time_limit_s;
   options.refinement.max_rounds = solver.mesh_refinement_rounds;
   options.refinement.tolerance = solver.mesh_refinement_tolerance;
@@ -150,7 +174,9 @@ ocp::DirectTranscriptionOptions transcriptionOptions(const ProblemSpec& problem)
   if (problem.vehicle.model == VehicleModelKind::kSegwayRmp) {
     options.model.segway = ocp::SegwayConstraints{models::defaultSegwayLookups()};
   }
-  if (std::optional<std::string> why = ocp::validateTranscriptionOptions(options)) {
+  ocp::DirectTranscriptionOptions checked = options;
+  checked.intervals = std::max(checked.intervals, 1);  // 0 (auto) is resolved per seed
+  if (std::optional<std::string> why = ocp::validateTranscriptionOptions(checked)) {
     throw InputError(problem.source_file.string() + ": solver: " + *why);
   }
   return options;
@@ -258,104 +284,109 @@ nlohmann::json plotSolve(const SolveOptions& options, const ProblemSpec& problem
 
 namespace {
 
-// `solve` with shooting or collocation: the initial guess from --guess, else the parametric
-// solution (newton), else a straight line; then the transcription, its re-simulation and the
-// report. Converged only when the re-simulation reaches the goal within the tolerances.
-int runTranscription(const SolveOptions& options, const ProblemSpec& problem,
-                     const terrain::ElevationMap& map, const models::TerrainFollowingModel& vehicle,
-                     const ocp::BoundaryValueProblem& bvp,
-                     const ocp::BoundaryValueOptions& parametric_options,
-                     ocp::DirectTranscriptionOptions transcription_options,
-                     CommandContext& context) {
-  std::optional<ocp::TranscriptionGuess> guess;
-  std::string source;
-  if (ocp::startMeetsGoal(bvp, parametric_options.criteria)) {
-    guess = ocp::TranscriptionGuess{};  // nothing to drive: solveTranscription needs no guess
-    source = "none (the start meets the goal)";
-  } else if (options.guess) {
-    const models::Trajectory candidate = models::readTrajectoryCsv(*options.guess);
-    std::string why;
-    guess = ocp::guessFromCandidate(candidate, bvp, &why);
-    if (!guess) throw InputError(options.guess->string() + ": " + why);
-    source = options.guess->string();
-  } else {
-    context.log->info("initial guess: the parametric solution (newton)");
-    const ocp::BoundaryValueSolution parametric =
-        ocp::solveBoundaryValue(vehicle, bvp, parametric_options, &map);
-    if (parametric.verified.ok) guess = ocp::guessFromTrajectory(parametric.verified.trajectory);
-    source = "newton (" + std::string(ocp::solveStatusName(parametric.status)) + ")";
-    if (!guess) {
-      guess = ocp::guessFromPath({{bvp.start.x, bvp.start.y}, {bvp.goal.x, bvp.goal.y}}, bvp);
-      source = "straight line";
-    }
-    if (!guess) {
-      throw InputError(problem.source_file.string() +
-                       ": no initial guess for direct transcription: the parametric solution "
-                       "failed (" +
-                       parametric.reason +
-                       ") and the start and goal positions coincide, so a straight line is no "
-                       "guess either: give one with --guess (a loop through the turn)");
+// The seeded solve's settings from the problem file.
+refine::SeededSolveOptions seededOptions(const ProblemSpec& problem, const SolveOptions& options,
+                                         const terrain::ElevationMap& map,
+                                         const std::optional<terrain::ClearanceMap>& clearance,
+                                         CommandContext& context) {
+  refine::SeededSolveOptions seeded;
+  seeded.method = coreMethod(problem.solver.method);
+  seeded.initial_guess = problem.solver.initial_guess == InitialGuessKind::kFlat
+                             ? refine::InitialGuessKind::kFlat
+                             : refine::InitialGuessKind::kAuto;
+  seeded.parametric = boundaryValueOptions(problem);
+  if (isTranscriptionMethod(problem.solver.method)) {
+    seeded.transcription.transcription = transcriptionOptions(problem);
+    seeded.transcription.max_intervals =
+        std::max(problem.solver.max_intervals, problem.solver.intervals.value_or(0));
+    if (clearance) {
+      seeded.transcription.transcription.model.clearance = {&*clearance,
+                                                            *problem.solver.min_clearance_m};
     }
   }
-  std::optional<terrain::ClearanceMap> clearance;
-  if (problem.solver.min_clearance_m) {
-    clearance.emplace(map);
-    transcription_options.model.clearance = {&*clearance, *problem.solver.min_clearance_m};
+  seeded.search_seed = problem.planner.seed;
+  seeded.time_limit_s = problem.solver.time_limit_s;
+  seeded.stop = context.stop;
+  (void)map;
+  (void)options;
+  return seeded;
+}
+
+nlohmann::json attemptsJson(const std::vector<refine::SeedAttempt>& attempts) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const refine::SeedAttempt& a : attempts) {
+    rows.push_back({{"seed", a.seed},
+                    {"method", a.method},
+                    {"status", ocp::solveStatusName(a.status)},
+                    {"reason", a.reason},
+                    {"cost", jsonNumber(a.cost)},
+                    {"time_ms", a.time_ms}});
   }
-  context.log->info("solving with {} ({} intervals) on the {} model",
-                    ocp::transcriptionSchemeName(transcription_options.scheme),
-                    transcription_options.intervals, vehicle.name());
-  ocp::TranscriptionSolveOptions solve_options;
-  solve_options.transcription = transcription_options;
-  solve_options.criteria = parametric_options.criteria;
-  solve_options.map = &map;
-  solve_options.max_intervals =
-      std::max(problem.solver.max_intervals, transcription_options.intervals);
-  solve_options.time_limit_s = transcription_options.time_limit_s;
-  solve_options.stop = context.stop;
-  ocp::VerifiedTranscription solve = ocp::solveTranscription(vehicle, bvp, *guess, solve_options);
-  ocp::TranscriptionSolution& solution = solve.solution;
-  const ocp::VerifiedTrajectory& verified = solve.verified;
-  ocp::SolveResult& result = solution.result;
-  result.status = solve.status;
-  result.reason = solve.reason;
-  result.iterations = solve.iterations;
-  result.history = solve.history;
-  result.solve_time_ms = solve.solve_time_ms;
-  if (options.out && verified.ok) models::writeTrajectoryCsv(verified.trajectory, *options.out);
-  nlohmann::json report =
-      transcriptionReportJson(solution, verified, transcription_options, source);
-  report.update(verdictJson(solve.verdict, verified.ok));
-  nlohmann::json rounds = nlohmann::json::array();
-  for (const ocp::TranscriptionRound& r : solve.rounds) {
-    rounds.push_back({{"intervals", r.intervals},
-                      {"speed_margin", r.speed_margin},
-                      {"limit_margin", r.limit_margin},
-                      {"clearance_m", r.clearance_m},
-                      {"status", ocp::solveStatusName(r.status)},
-                      {"reason", r.reason},
-                      {"iterations", r.iterations}});
+  return rows;
+}
+
+// The report of a seeded solve: the contract's keys, the verdict, the attempts, and the
+// solver's own details (the parametric controls, or the transcription's mesh and rounds).
+nlohmann::json seededReportJson(const refine::SeededSolution& solution,
+                                const refine::SeededSolveOptions& seeded,
+                                const ProblemSpec& problem) {
+  nlohmann::json json{
+      {"status", ocp::solveStatusName(solution.status)},
+      {"reason", solution.reason},
+      {"method", solution.method},
+      {"requested_method", solverMethodName(problem.solver.method)},
+      {"initial_guess", solution.initial_guess},
+      {"iterations", solution.iterations},
+      {"max_iterations", seeded.parametric.max_iterations},
+      {"time_limit_s",
+       seeded.time_limit_s ? nlohmann::json(*seeded.time_limit_s) : nlohmann::json(nullptr)},
+      {"solve_time_ms", solution.total_time_ms},
+      {"tolerance",
+       {{"position_m", seeded.parametric.criteria.position_m},
+        {"heading_rad", seeded.parametric.criteria.heading_rad},
+        {"lagrangian_gradient", seeded.parametric.criteria.lagrangian_gradient}}},
+      {"attempts", attemptsJson(solution.attempts)},
+      {"history", iterationHistoryJson(solution.history, solution.parametric.has_value())},
+  };
+  if (solution.parametric) {
+    const ocp::SolveResult& s = solution.parametric->solver;
+    json["solver_time_ms"] = s.solve_time_ms;
+    json["integrations"] = s.integrations + solution.parametric->initial_guess.integrations;
+    json["controls"] = std::vector<double>(s.q.data(), s.q.data() + s.q.size());
   }
-  report["verification_rounds"] = rounds;
-  report["max_intervals"] = solve_options.max_intervals;
-  if (options.plot) {
-    report["plots"] = plotSolve(options, problem, map, verified, result.history,
-                                report["method"].get<std::string>(), context);
+  if (solution.transcription) {
+    const ocp::VerifiedTranscription& t = *solution.transcription;
+    const ocp::TranscriptionSolution& x = t.solution;
+    nlohmann::json active = nlohmann::json::array();
+    for (const ocp::ActiveConstraint& a : x.active) {
+      active.push_back({{"limit", a.name},
+                        {"t", a.t},
+                        {"point", a.point},
+                        {"value", a.value},
+                        {"multiplier", a.multiplier}});
+    }
+    nlohmann::json rounds = nlohmann::json::array();
+    for (const ocp::TranscriptionRound& r : t.rounds) {
+      rounds.push_back({{"intervals", r.intervals},
+                        {"speed_margin", r.speed_margin},
+                        {"limit_margin", r.limit_margin},
+                        {"clearance_m", r.clearance_m},
+                        {"status", ocp::solveStatusName(r.status)},
+                        {"reason", r.reason},
+                        {"iterations", r.iterations}});
+    }
+    json["scheme"] = ocp::transcriptionSchemeName(x.scheme);
+    json["intervals"] = x.mesh.empty() ? 0 : static_cast<int>(x.mesh.size()) - 1;
+    json["max_intervals"] = seeded.transcription.max_intervals;
+    json["ipopt_status"] = x.ipopt_status;
+    json["solver_cost"] = jsonNumber(x.result.cost);
+    json["max_defect"] = jsonNumber(x.max_defect);
+    json["active_constraints"] = active;
+    json["verification_rounds"] = rounds;
   }
-  if (context.json) {
-    context.out << report.dump(2) << '\n';
-  } else {
-    context.out << ocp::solveStatusName(result.status) << " ("
-                << report["method"].get<std::string>() << " " << report["scheme"].get<std::string>()
-                << ", " << result.iterations << " iterations, " << result.solve_time_ms
-                << " ms, Ipopt " << solution.ipopt_status << ")";
-    if (!result.reason.empty()) context.out << ": " << result.reason;
-    context.out << '\n';
-    printVerifiedTrajectory(context.out, verified);
-    if (options.out && verified.ok)
-      context.out << "  trajectory  " << options.out->string() << '\n';
-  }
-  return result.status == ocp::SolveStatus::kConverged ? kExitSuccess : kExitNotSolved;
+  json.update(verifiedTrajectoryJson(solution.verified));
+  json.update(verdictJson(solution.verdict, solution.verified.ok));
+  return json;
 }
 
 }  // namespace
@@ -367,11 +398,9 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
     if (!method) throw InputError("--method: unknown method '" + *options.method + "'");
     problem.solver.method = *method;
   }
-  const ocp::BoundaryValueOptions solve_options = boundaryValueOptions(problem);
-  const bool transcription = isTranscriptionMethod(problem.solver.method);
-  const ocp::DirectTranscriptionOptions transcription_options =
-      transcription ? transcriptionOptions(problem) : ocp::DirectTranscriptionOptions{};
-  if (options.guess && !transcription) {
+  if (isTranscriptionMethod(problem.solver.method)) (void)transcriptionOptions(problem);
+  if (options.guess && problem.solver.method != SolverMethod::kShooting &&
+      problem.solver.method != SolverMethod::kCollocation) {
     throw InputError("--guess: only shooting and collocation take an initial guess");
   }
   // Every output is checked before the work starts.
@@ -382,34 +411,67 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
   const models::TerrainFollowingModel& vehicle = scene.vehicle();
   ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem);
   bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable()};
-  if (transcription) {
-    return runTranscription(options, problem, map, vehicle, bvp, solve_options,
-                            transcription_options, context);
+  std::optional<terrain::ClearanceMap> clearance;
+  if (problem.solver.min_clearance_m) clearance.emplace(map);
+  const refine::SeededSolveOptions seeded =
+      seededOptions(problem, options, map, clearance, context);
+  refine::SeededSolution solution;
+  if (options.guess) {
+    // A user's guess: the transcription from it alone.
+    const models::Trajectory candidate = models::readTrajectoryCsv(*options.guess);
+    std::string why;
+    const std::optional<ocp::TranscriptionGuess> guess =
+        ocp::guessFromCandidate(candidate, bvp, &why);
+    if (!guess) throw InputError(options.guess->string() + ": " + why);
+    ocp::TranscriptionSolveOptions solve = seeded.transcription;
+    solve.criteria = seeded.parametric.criteria;
+    solve.map = &map;
+    solve.stop = context.stop;
+    solve.time_limit_s = seeded.time_limit_s;
+    if (problem.solver.method == SolverMethod::kShooting) {
+      solve.transcription.scheme = ocp::TranscriptionScheme::kMultipleShooting;
+    }
+    if (solve.transcription.intervals <= 0) solve.transcription.intervals = 40;
+    solve.max_intervals = std::max(solve.max_intervals, solve.transcription.intervals);
+    ocp::VerifiedTranscription result = ocp::solveTranscription(vehicle, bvp, *guess, solve);
+    solution.status = result.status;
+    solution.reason = result.reason;
+    solution.method = solverMethodName(problem.solver.method);
+    solution.initial_guess = options.guess->string();
+    solution.verified = result.verified;
+    solution.verdict = result.verdict;
+    solution.history = result.history;
+    solution.iterations = result.iterations;
+    solution.total_time_ms = result.solve_time_ms;
+    solution.transcription = std::move(result);
+  } else {
+    context.log->info(
+        "solving with {} ({} seeds) on the {} model", solverMethodName(problem.solver.method),
+        problem.solver.initial_guess == InitialGuessKind::kFlat ? "004's flat" : "global",
+        vehicle.name());
+    solution = refine::solveSeeded(vehicle, bvp, &map, seeded);
   }
-  context.log->info("solving with {} on the {} model",
-                    ocp::boundaryValueMethodName(solve_options.method), vehicle.name());
-  const ocp::BoundaryValueSolution solution =
-      ocp::solveBoundaryValue(vehicle, bvp, solve_options, &map);
   if (options.out && solution.verified.ok) {
     models::writeTrajectoryCsv(solution.verified.trajectory, *options.out);
   }
-  nlohmann::json report = solveReportJson(solution, solve_options);
-  report.update(verdictJson(solution.verdict, solution.verified.ok));
+  nlohmann::json report = seededReportJson(solution, seeded, problem);
   if (options.plot) {
-    report["plots"] = plotSolve(options, problem, map, solution.verified, solution.solver.history,
-                                ocp::boundaryValueMethodName(solve_options.method), context);
+    report["plots"] = plotSolve(options, problem, map, solution.verified, solution.history,
+                                solution.method, context);
   }
+  if (context.stopRequested()) report["stopped_by"] = "interrupt";
   if (context.json) {
     context.out << report.dump(2) << '\n';
   } else {
-    const ocp::VerifiedTrajectory& v = solution.verified;
-    context.out << ocp::solveStatusName(solution.status) << " ("
-                << report["method"].get<std::string>() << ", " << solution.solver.iterations
-                << " iterations, " << solution.total_time_ms << " ms)";
+    context.out << ocp::solveStatusName(solution.status) << " (" << solution.method << " from "
+                << solution.initial_guess << ", " << solution.iterations << " iterations, "
+                << solution.total_time_ms << " ms)";
     if (!solution.reason.empty()) context.out << ": " << solution.reason;
     context.out << '\n';
-    printVerifiedTrajectory(context.out, v);
-    if (options.out && v.ok) context.out << "  trajectory  " << options.out->string() << '\n';
+    printVerifiedTrajectory(context.out, solution.verified);
+    if (options.out && solution.verified.ok) {
+      context.out << "  trajectory  " << options.out->string() << '\n';
+    }
   }
   return solution.status == ocp::SolveStatus::kConverged ? kExitSuccess : kExitNotSolved;
 }

@@ -6,6 +6,7 @@
 #include "terratraj/ocp/ceres_solver.hpp"
 #include "terratraj/ocp/ipopt_solver.hpp"
 #include "terratraj/ocp/newton_solver.hpp"
+#include "terratraj/ocp/parametric_controls.hpp"
 #include "terratraj/ocp/path_constraints.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
 #include "terratraj/ocp/start_at_goal.hpp"
@@ -118,7 +119,11 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
   if (const std::optional<std::string> problem_error = validateProblem(problem)) {
     return finish(SolveStatus::kInfeasible, *problem_error);
   }
-  solution.initial_guess = flatInitialGuess(problem, vehicle.surface());
+  const int unknowns =
+      ParametricControls(problem.start, problem.goal, problem.orders).parameterCount();
+  solution.initial_guess = options.initial_q.size() == unknowns
+                               ? flatInitialGuess(problem, vehicle.surface(), options.initial_q)
+                               : flatInitialGuess(problem, vehicle.surface());
   if (!solution.initial_guess.ok) {
     solution.solver.status = SolveStatus::kInfeasible;
     return finish(SolveStatus::kInfeasible, solution.initial_guess.reason);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "ipopt_status.hpp"
@@ -295,7 +296,10 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
     const double left = *options.time_limit_s - secondsSince(started);
     ok = ok && ipopt.SetNumericValue("max_cpu_time", std::max(left, 1e-6));
   }
-  if (!ok || app->Initialize("") != Ipopt::Solve_Succeeded) {
+  // Developer hook for profiling Ipopt's settings (docs/optimal-control.md): an options file
+  // whose values override the ones above.
+  const char* tuning = std::getenv("TERRATRAJ_IPOPT_OPTIONS");
+  if (!ok || app->Initialize(tuning != nullptr ? tuning : "") != Ipopt::Solve_Succeeded) {
     out.reason = "Ipopt could not be set up";
     return out;
   }
@@ -518,6 +522,7 @@ TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingMod
     layout.scheme = options.scheme;
     layout.shooting_controls = options.shooting_controls;
     layout.linear_controls = options.linear_controls;
+    layout.rest_curvature = options.rest_curvature;
     layout.mesh = uniformMesh(options.intervals);
     // A twentieth of a cell: see TranscriptionLayout::hessian_position_step.
     layout.hessian_position_step = 0.05 * vehicle.surface().map().geometry().cell;

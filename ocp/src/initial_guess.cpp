@@ -90,13 +90,56 @@ Eigen::VectorXd heuristicGuess(const BoundaryValueProblem& problem) {
 
 InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
                               const terrain::TerrainSurface& surface) {
+  return flatInitialGuess(problem, surface, heuristicGuess(problem));
+}
+
+Eigen::VectorXd fitParametricControls(const BoundaryValueProblem& problem,
+                                      const std::vector<double>& t, const std::vector<double>& v,
+                                      const std::vector<double>& omega, double path_length) {
+  const int yaw_order = problem.orders.yaw_rate, speed_order = problem.orders.speed;
+  const std::size_t n = t.size();
+  const double tf = t.back() - t.front();
+  // One least-squares fit per control: value(tau) - value_0 - delta tau^K
+  // = sum_{k<K} c_k (tau^k - tau^K).
+  const auto fit = [&](const std::vector<double>& values, int order, double start, double end) {
+    Eigen::VectorXd c = Eigen::VectorXd::Zero(std::max(order - 1, 0));
+    if (order <= 1) return c;
+    Eigen::MatrixXd a(n, order - 1);
+    Eigen::VectorXd b(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double tau = (t[i] - t.front()) / tf;
+      const double top = std::pow(tau, order);
+      for (int k = 1; k < order; ++k) a(i, k - 1) = std::pow(tau, k) - top;
+      b(i) = values[i] - start - (end - start) * top;
+    }
+    c = a.colPivHouseholderQr().solve(b);
+    return c;
+  };
+  const Eigen::VectorXd w = fit(omega, yaw_order, problem.start.omega, problem.goal.omega);
+  const Eigen::VectorXd s = fit(v, speed_order, problem.start.v, problem.goal.v);
+  // The mean of the fitted speed over tau: v_0 + sum_k s_k / (k + 1), s_M closing the sum.
+  double mean = problem.start.v;
+  double closing = problem.goal.v - problem.start.v;
+  for (int k = 1; k < speed_order; ++k) {
+    mean += s(k - 1) / (k + 1.0);
+    closing -= s(k - 1);
+  }
+  mean += closing / (speed_order + 1.0);
+  Eigen::VectorXd q(w.size() + s.size() + 1);
+  q << w, s, (mean > 1e-3 && path_length > 0.0 ? path_length / mean : tf);
+  return q;
+}
+
+InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
+                              const terrain::TerrainSurface& surface,
+                              const Eigen::VectorXd& start_q) {
   InitialGuess guess;
   const FlatGroundModel flat(surface);
   BoundaryValueProblem flat_problem = problem;
   flat_problem.cost.kind = CostKind::kTime;  // no slope to dwell on
   ParametricTrajectoryModel model(flat, flat_problem, flatOptions());
   const int itf = model.finalTimeIndex();
-  Eigen::VectorXd q = heuristicGuess(problem);
+  Eigen::VectorXd q = start_q;
   guess.q = q;
 
   // Fully constrained: Gauss-Newton with minimum-norm (Levenberg) steps on c(q) = 0.

@@ -110,6 +110,10 @@ ConstraintRow TranscriptionNlp::row(int row) const {
     const int interval = layout_.scheme == TranscriptionScheme::kHermiteSimpson ? block / 2 : block;
     return {true, interval, "defect"};
   }
+  if (row >= defect_rows_ + path_rows_) {
+    return {false, rest_[static_cast<std::size_t>(row - defect_rows_ - path_rows_)].point,
+            "kappa_max_at_rest"};
+  }
   const int count = model_->constraintCount();
   const int local = row - defect_rows_;
   return {false, local / count, model_->constraintName(local % count)};
@@ -195,6 +199,26 @@ void TranscriptionNlp::buildStructure() {
       }
       ++row;
     }
+  }
+  rest_.clear();
+  const BoundaryValueProblem& problem = model_->problem();
+  const double kappa = problem.limits.kappa_max;
+  if (layout_.rest_curvature && problem.start.v == 0.0) {
+    rest_.push_back({0, 1.0, -kappa});
+    rest_.push_back({0, -1.0, -kappa});
+  }
+  if (layout_.rest_curvature && problem.goal.v == 0.0) {
+    rest_.push_back({points() - 1, 1.0, kappa});
+    rest_.push_back({points() - 1, -1.0, kappa});
+  }
+  rest_rows_ = static_cast<int>(rest_.size());
+  rest_jac_start_ = static_cast<int>(jac_rows_.size());
+  for (const RestRow& r : rest_) {
+    jac_rows_.push_back(row);
+    jac_cols_.push_back(kPointSize * r.point + kStateSize + 1);  // omega'
+    jac_rows_.push_back(row);
+    jac_cols_.push_back(kPointSize * r.point + kStateSize);  // v'
+    ++row;
   }
   hess_rows_.clear();
   hess_cols_.clear();
@@ -324,6 +348,15 @@ void TranscriptionNlp::evaluatePathAndCost(const Eigen::Map<const Eigen::VectorX
   }
   objective_ = tf * (1.0 + mean_running);
   gradient_(finalTimeIndex()) = 1.0 + mean_running;
+  entry = rest_jac_start_;
+  for (std::size_t k = 0; k < rest_.size(); ++k) {
+    const RestRow& r = rest_[k];
+    const int base = kPointSize * r.point + kStateSize;
+    constraints_(defect_rows_ + path_rows_ + static_cast<int>(k)) =
+        r.omega_dot * x(base + 1) + r.v_dot * x(base);
+    jac_values_(entry++) = r.omega_dot;
+    jac_values_(entry++) = r.v_dot;
+  }
 }
 
 bool TranscriptionNlp::evaluate(const double* x_data) {

@@ -23,8 +23,12 @@ double secondsSince(Clock::time_point start) {
 BoundaryValueProblem tightened(const BoundaryValueProblem& problem, double speed_margin,
                                double limit_margin) {
   BoundaryValueProblem out = problem;
-  out.limits.v_max *= 1.0 - speed_margin;
-  out.limits.omega_max *= 1.0 - speed_margin;
+  // Never below the boundary values themselves: the first and last points must stay feasible.
+  out.limits.v_max =
+      std::max(out.limits.v_max * (1.0 - speed_margin), std::max(problem.start.v, problem.goal.v));
+  out.limits.omega_max =
+      std::max(out.limits.omega_max * (1.0 - speed_margin),
+               std::max(std::abs(problem.start.omega), std::abs(problem.goal.omega)));
   out.limits.a_max *= 1.0 - speed_margin;
   for (double* limit : {&out.limits.kappa_max, &out.limits.sigma_max, &out.limits.pitch_max,
                         &out.limits.roll_max}) {
@@ -165,6 +169,13 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
     if (out.status == SolveStatus::kConverged) break;
     if (out.solution.result.status != SolveStatus::kConverged || !out.verified.ok) break;
     start = out.solution.asGuess();
+    // A curvature rule broken at rest: the rows that hold it there.
+    if (!transcription.rest_curvature && (problem.start.v == 0.0 || problem.goal.v == 0.0) &&
+        (out.verdict.check.find("kappa_max") != nullptr ||
+         out.verdict.check.find("sigma_max") != nullptr)) {
+      transcription.rest_curvature = true;
+      continue;
+    }
     const bool can_double = 2 * transcription.intervals <= options.max_intervals;
     if (out.verdict.failure == models::VerdictFailure::kMissesGoal) {
       // The discretisation error: more intervals.

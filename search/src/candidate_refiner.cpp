@@ -671,8 +671,11 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
         *problem_->vehicle,
         [&] {
           ocp::BoundaryValueProblem tightened = *bvp_;
-          tightened.limits.v_max *= 1.0 - options_.speed_margin;
-          tightened.limits.omega_max *= 1.0 - options_.speed_margin;
+          tightened.limits.v_max = std::max(tightened.limits.v_max * (1.0 - options_.speed_margin),
+                                            std::max(bvp_->start.v, bvp_->goal.v));
+          tightened.limits.omega_max =
+              std::max(tightened.limits.omega_max * (1.0 - options_.speed_margin),
+                       std::max(std::abs(bvp_->start.omega), std::abs(bvp_->goal.omega)));
           return tightened;
         }(),
         start, coarse);

@@ -291,9 +291,12 @@ TEST_F(CliTest, SolveWritesTheReportAndTheTrajectory) {
     EXPECT_TRUE(json.contains(key)) << key;
   }
   EXPECT_EQ(json["status"], "converged");
-  EXPECT_EQ(json["method"], "newton");
+  // The default method: auto (global seeds, collocation), which says what it used.
+  EXPECT_EQ(json["requested_method"], "auto");
+  EXPECT_EQ(json["method"], "collocation");
+  EXPECT_THAT(json["initial_guess"].get<std::string>(), HasSubstr("dubins"));
   EXPECT_LT(json["terminal_error"]["position_m"].get<double>(), 1e-3);
-  EXPECT_EQ(json["history"].size(), json["iterations"].get<std::size_t>() + 1);
+  EXPECT_FALSE(json["history"].empty());
   std::ifstream csv(path("trajectory.csv"));
   std::string header, line, last;
   std::getline(csv, header);
@@ -307,13 +310,15 @@ TEST_F(CliTest, SolveWritesTheReportAndTheTrajectory) {
   EXPECT_NEAR(std::stod(x), 9.0, 1e-3);
   EXPECT_NEAR(std::stod(y), 8.0, 1e-3);
 
-  // Read but not solved: rest to rest with a linear speed cannot move (exit 1, report kept).
-  write("still.yaml", problem + "solver: {speed_order: 1}\n");
+  // Rest to rest: solved by default (free speed); newton's linear speed (the paper's
+  // parametrisation) cannot move: read but not solved (exit 1, report kept).
   std::string still = problem;
   still.replace(still.find("v: 0.5}\ngoal"), 7, "v: 0.0}");
   still.replace(still.rfind("v: 0.5"), 6, "v: 0.0");
   write("still.yaml", still);
-  const CliResult infeasible = run({"solve", path("still.yaml"), "--json"});
+  const CliResult rest = run({"solve", path("still.yaml"), "--json"});
+  EXPECT_EQ(rest.status, kExitSuccess) << rest.out;
+  const CliResult infeasible = run({"solve", path("still.yaml"), "--method", "newton", "--json"});
   EXPECT_EQ(infeasible.status, kExitNotSolved) << infeasible.out;
   EXPECT_EQ(nlohmann::json::parse(infeasible.out)["status"], "infeasible");
 

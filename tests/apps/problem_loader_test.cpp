@@ -143,7 +143,7 @@ TEST(ProblemLoader, ContractExampleParses) {
   EXPECT_EQ(p.cost.kind, CostKind::kTime);
   EXPECT_DOUBLE_EQ(p.cost.alpha, 0.0);
   EXPECT_EQ(p.solver.method, SolverMethod::kNewton);
-  EXPECT_EQ(p.solver.intervals, 40);
+  EXPECT_EQ(p.solver.intervals, std::optional<int>(40));
   EXPECT_EQ(p.solver.max_iterations, 100);
   EXPECT_DOUBLE_EQ(p.solver.tolerance_position_m, 0.001);
   EXPECT_DOUBLE_EQ(p.solver.tolerance_heading_rad, 0.001);
@@ -189,8 +189,9 @@ TEST(ProblemLoader, MinimalProblemTakesDefaults) {
 
   EXPECT_EQ(p.cost.kind, CostKind::kTime);
   EXPECT_DOUBLE_EQ(p.cost.alpha, 0.0);
-  EXPECT_EQ(p.solver.method, SolverMethod::kNewton);
-  EXPECT_EQ(p.solver.intervals, 40);
+  EXPECT_EQ(p.solver.method, SolverMethod::kAuto);
+  EXPECT_EQ(p.solver.initial_guess, InitialGuessKind::kAuto);
+  EXPECT_FALSE(p.solver.intervals.has_value());
   EXPECT_EQ(p.solver.max_iterations, 100);
   EXPECT_DOUBLE_EQ(p.solver.tolerance_position_m, 0.001);
   EXPECT_DOUBLE_EQ(p.solver.tolerance_heading_rad, 0.001);
@@ -242,7 +243,7 @@ planner: {kind: taeasl, time_limit_s: 0, seed: 0, homotopy_classes: 1, frame_rad
   EXPECT_EQ(p.cost.kind, CostKind::kSlopeDwell);
   EXPECT_DOUBLE_EQ(p.cost.alpha, 2.5);
   EXPECT_EQ(p.solver.method, SolverMethod::kCollocation);
-  EXPECT_EQ(p.solver.intervals, 2);
+  EXPECT_EQ(p.solver.intervals, std::optional<int>(2));
   EXPECT_EQ(p.solver.max_iterations, 1);
   ASSERT_TRUE(p.solver.time_limit_s.has_value());
   EXPECT_DOUBLE_EQ(*p.solver.time_limit_s, 0.5);
@@ -322,7 +323,7 @@ TEST(ProblemLoader, EnumNamesRoundTrip) {
   for (const std::string& name : plannerKindNames()) {
     EXPECT_EQ(plannerKindName(*parsePlannerKind(name)), name);
   }
-  EXPECT_EQ(solverMethodNames().size(), 6u);
+  EXPECT_EQ(solverMethodNames().size(), 7u);
   EXPECT_FALSE(parseVehicleModelKind("Point").has_value());
   EXPECT_FALSE(parseSolverMethod("").has_value());
   EXPECT_STREQ(vehicleModelName(VehicleModelKind::kFourWheel), "four_wheel");
@@ -595,8 +596,8 @@ TEST(ProblemLoader, BadEnumValuesListTheOptions) {
   EXPECT_THAT(parseError(minimalWith("cost: {kind: energy}\n")),
               HasSubstr("cost.kind: must be one of: time, slope_dwell (got \"energy\")"));
   EXPECT_THAT(parseError(minimalWith("solver: {method: gradient}\n")),
-              HasSubstr("solver.method: must be one of: newton, newton_fd, ipopt, ceres, shooting, "
-                        "collocation (got \"gradient\")"));
+              HasSubstr("solver.method: must be one of: auto, newton, newton_fd, ipopt, ceres, "
+                        "shooting, collocation (got \"gradient\")"));
   EXPECT_THAT(parseError(minimalWith("planner: {kind: rrt}\n")),
               HasSubstr("planner.kind: must be one of: prm, lattice, taeasl (got \"rrt\")"));
 }

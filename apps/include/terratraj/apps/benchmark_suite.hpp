@@ -59,6 +59,14 @@ std::unique_ptr<BenchmarkSuite> makeConvergenceSuite(const BenchmarkSettings& se
 std::unique_ptr<BenchmarkSuite> makePlannersSuite(const BenchmarkSettings& settings);
 std::unique_ptr<BenchmarkSuite> makeRefineSuite(const BenchmarkSettings& settings);
 std::unique_ptr<BenchmarkSuite> makeTablesSuite(const BenchmarkSettings& settings);
+std::unique_ptr<BenchmarkSuite> makeRobustnessSuite(const BenchmarkSettings& settings);
+
+/// The robustness set's cases (rows with "family": "robustness"), its summary and text, and the
+/// DEMs it reads: `bench robustness` alone, and part of `bench convergence`.
+std::vector<BenchmarkCase> robustnessCases(const BenchmarkSettings& settings);
+nlohmann::json summarizeRobustness(const nlohmann::json& rows);
+std::string robustnessText(const nlohmann::json& summary);
+std::vector<std::filesystem::path> robustnessInputs(const BenchmarkSettings& settings);
 
 /// {"count", "median", "p90", "min", "max", "mean"} of `values` ({"count": 0} when empty).
 nlohmann::json distributionJson(std::vector<double> values);

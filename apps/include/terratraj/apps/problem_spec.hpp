@@ -33,7 +33,10 @@ enum class CostKind {
 
 /// Boundary-value solvers, named in YAML as newton | newton_fd | ipopt | ceres | shooting |
 /// collocation.
-enum class SolverMethod { kNewton, kNewtonFd, kIpopt, kCeres, kShooting, kCollocation };
+enum class SolverMethod { kAuto, kNewton, kNewtonFd, kIpopt, kCeres, kShooting, kCollocation };
+
+/// Where the solvers start, named in YAML as auto | flat.
+enum class InitialGuessKind { kAuto, kFlat };
 
 /// Planners, named in YAML as prm | lattice | taeasl.
 enum class PlannerKind { kPrm, kLattice, kTaeasl };
@@ -82,7 +85,8 @@ inline constexpr std::array<EnumName<CostKind>, 2> kCostKindNames{{
     {CostKind::kTime, "time"},
     {CostKind::kSlopeDwell, "slope_dwell"},
 }};
-inline constexpr std::array<EnumName<SolverMethod>, 6> kSolverMethodNames{{
+inline constexpr std::array<EnumName<SolverMethod>, 7> kSolverMethodNames{{
+    {SolverMethod::kAuto, "auto"},
     {SolverMethod::kNewton, "newton"},
     {SolverMethod::kNewtonFd, "newton_fd"},
     {SolverMethod::kIpopt, "ipopt"},
@@ -191,11 +195,16 @@ struct CostSpec {
 
 /// `solver`: the boundary-value solver and its stopping rules.
 struct SolverSpec {
-  SolverMethod method = SolverMethod::kNewton;
-  int intervals = 40;  ///< shooting / collocation intervals, >= 2
+  SolverMethod method = SolverMethod::kAuto;  ///< auto: global seeds, collocation, best verified
+  InitialGuessKind initial_guess = InitialGuessKind::kAuto;  ///< auto: global seeds; flat: 004's
+  /// Shooting / collocation intervals, >= 2; absent: one per 0.25 m of the seed's length.
+  std::optional<int> intervals;
   /// The verification rounds double the intervals up to this many, >= intervals.
   int max_intervals = 800;
-  int max_iterations = 100;                    ///< >= 1
+  int max_iterations = 100;  ///< >= 1 (parametric solvers)
+  /// Ipopt iterations of a shooting / collocation solve, >= 1; absent: 5 x max_iterations
+  /// (an interior-point transcription takes more, cheaper iterations).
+  std::optional<int> transcription_max_iterations;
   double tolerance_position_m = 0.001;         ///< terminal position error [m], > 0
   double tolerance_heading_rad = 0.001;        ///< terminal heading error [rad], > 0
   double tolerance_lagrangian_gradient = 0.1;  ///< |dJ/dq + lambda' dc/dq|_inf, > 0

@@ -42,10 +42,12 @@ struct BoundaryValueOptions {
     options.absolute_tolerance = 1e-9;
     return options;
   }();
-  double newton_fd_step = 0.01;   ///< RK4 step of newton_fd [s]
-  int path_points = 41;           ///< ipopt: points where path constraints are imposed
-  double limit_tolerance = 1e-3;  ///< violation tolerated before kInfeasible (limit units)
+  double newton_fd_step = 0.01;  ///< RK4 step of newton_fd [s]
+  int path_points = 41;          ///< ipopt: points where path constraints are imposed
   VerificationOptions verification;
+  /// Where the flat-ground initial guess starts (problem's ParametricControls layout, e.g.
+  /// ocp::fitParametricControls of a global seed); empty: 004's heuristic.
+  Eigen::VectorXd initial_q;
 };
 
 /// A solve and its verification.

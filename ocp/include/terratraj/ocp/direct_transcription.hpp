@@ -46,6 +46,8 @@ struct DirectTranscriptionOptions {
   /// Hermite-Simpson: piecewise-linear controls (TranscriptionLayout::linear_controls), so that
   /// |v'| <= a_max and |omega'| hold between the points too; refinement uses it.
   bool linear_controls = false;
+  /// The curvature rows at a start or goal at rest (TranscriptionLayout::rest_curvature).
+  bool rest_curvature = false;
   int intervals = 40;  ///< N, >= 1
   /// Unset: exact for collocation, limited-memory for shooting and for the Segway (whose
   /// piecewise-bilinear look-ups have no useful second derivatives).

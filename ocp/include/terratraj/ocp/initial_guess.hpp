@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "terratraj/ocp/boundary_value_problem.hpp"
 #include "terratraj/terrain/terrain_surface.hpp"
@@ -32,5 +33,19 @@ Eigen::VectorXd heuristicGuess(const BoundaryValueProblem& problem);
 /// Never throws.
 InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
                               const terrain::TerrainSurface& surface);
+
+/// The same from `start_q` (unknowns of problem's ParametricControls layout, e.g. fitted to a
+/// global seed by fitParametricControls) instead of the heuristic.
+InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
+                              const terrain::TerrainSurface& surface,
+                              const Eigen::VectorXd& start_q);
+
+/// The unknowns q whose polynomial controls best follow `t`, `v`, `omega` (least squares over
+/// the samples, t from 0 to the final time), with t_f such that the path length is
+/// `path_length` [m] when the fitted speed allows (else the samples' duration). Sizes must
+/// agree and hold at least two samples.
+Eigen::VectorXd fitParametricControls(const BoundaryValueProblem& problem,
+                                      const std::vector<double>& t, const std::vector<double>& v,
+                                      const std::vector<double>& omega, double path_length);
 
 }  // namespace terratraj::ocp

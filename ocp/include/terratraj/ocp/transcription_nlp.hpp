@@ -58,6 +58,11 @@ struct TranscriptionLayout {
   /// too; free midpoint controls make them quadratic, which overshoots a bang-bang switch by up
   /// to 25 %.
   bool linear_controls = false;
+  /// At a start or goal at rest, |omega'| <= kappa_max |v'| (the curvature there is omega' / v';
+  /// the path rows' |omega| <= kappa_max v say nothing at v = 0): four linear rows at most,
+  /// "kappa_max_at_rest", after the path rows. solveTranscription() adds them in a round when a
+  /// re-simulation breaks a curvature rule near rest.
+  bool rest_curvature = false;
 };
 
 /// A uniform mesh of `intervals` (>= 1) intervals.
@@ -86,7 +91,7 @@ class TranscriptionNlp {
   int intervals() const { return static_cast<int>(layout_.mesh.size()) - 1; }
   int points() const { return static_cast<int>(tau_.size()); }
   int variableCount() const { return kPointSize * points() + 1; }
-  int constraintCount() const { return defect_rows_ + path_rows_; }
+  int constraintCount() const { return defect_rows_ + path_rows_ + rest_rows_; }
   /// Equality rows (dynamics defects, then the control-linearity rows): the first
   /// defectRowCount() rows of g.
   int defectRowCount() const { return defect_rows_; }
@@ -170,6 +175,16 @@ class TranscriptionNlp {
   std::vector<double> tau_, weights_;
   std::vector<DefectBlock> blocks_;
   int defect_rows_ = 0, path_rows_ = 0, path_jac_start_ = 0;
+  // The curvature at a boundary at rest: where v = 0, omega / v is omega' / v', so
+  // |omega'| <= kappa_max |v'| there (two linear rows at a start at rest, two at a goal at
+  // rest; the path rows' |omega| <= kappa_max v says nothing at v = 0).
+  struct RestRow {
+    int point = 0;
+    double omega_dot = 0.0;  ///< coefficient of omega' (+-1)
+    double v_dot = 0.0;      ///< coefficient of v' (-+kappa_max)
+  };
+  std::vector<RestRow> rest_;
+  int rest_rows_ = 0, rest_jac_start_ = 0;
   int control_row_start_ = 0, control_jac_start_ = 0;
   std::vector<int> jac_rows_, jac_cols_, hess_rows_, hess_cols_;
   std::vector<PointEvaluation> evals_;

@@ -38,7 +38,7 @@ struct TranscriptionSolveOptions {
   /// v_max, omega_max and a_max are lowered by this fraction in the solve, in [0, 0.5) ...
   double speed_margin = 0.0005;
   /// ... and kappa_max, sigma_max, pitch_max, roll_max by this one, in [0, 0.5).
-  double limit_margin = 0.02;
+  double limit_margin = 0.002;
   int max_rounds = 4;       ///< re-solves after the first, >= 0
   int max_intervals = 800;  ///< doubling stops here, >= transcription.intervals
   /// A re-simulation over a lethal cell raises the clearance constraint (when

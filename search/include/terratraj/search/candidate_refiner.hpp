@@ -109,7 +109,7 @@ struct RefinementOptions {
   /// ... and with v_max and omega_max lowered by this fraction, in [0, 0.5) (the speed is
   /// quadratic between points; the overshoot measured at 0.25 m intervals is about 0.1 %).
   double speed_margin = 0.0005;
-  /// A re-simulation that still breaks a limit by more than parametric.limit_tolerance is
+  /// A re-simulation that still breaks a limit (the verdict's 1e-3 relative) is
   /// solved again from its own solution, up to this many times, >= 0: with the clearance
   /// raised to half a cell if it clipped a lethal cell; else first with twice the intervals
   /// (within max_intervals), then with the speed margin x 4 and the others x 2 (at most 0.25).

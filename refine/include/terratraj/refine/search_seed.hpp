@@ -1,0 +1,20 @@
+#pragma once
+// The search seed of solveSeeded(): when obstacles stand in the way of every Dubins word, the
+// kinodynamic PRM's first solution, refined in its homotopy class (search::CandidateRefiner).
+
+#include <optional>
+
+#include "terratraj/refine/seeded_solver.hpp"
+
+namespace terratraj::refine {
+
+/// Plans with the PRM for options.search_time_s at most (stopping at its first solution; the
+/// seed options.search_seed), then refines that candidate with the method of `options` (auto:
+/// collocation) within `time_left_s`. The result's status is the refinement's (the verdict
+/// against the exact goal); kInfeasible with the reason when the PRM finds nothing.
+SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
+                               const ocp::BoundaryValueProblem& problem,
+                               const terrain::ElevationMap& map, const SeededSolveOptions& options,
+                               std::optional<double> time_left_s);
+
+}  // namespace terratraj::refine

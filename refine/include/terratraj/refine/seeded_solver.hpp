@@ -1,0 +1,104 @@
+#pragma once
+// solveSeeded(): the optimal-control core's front door (`terratraj solve`, the `auto` method):
+// global seeds, then a local solver from each, and the best verified result.
+//
+// Seeds (solveSeeded's `initial_guess: auto`): the Dubins words between start and goal with the
+// vehicle's turning radius (ocp::dubinsPaths), shortest first, each time-parametrised under
+// v_max, a_max and omega_max (ocp::guessFromPath); when every word crosses an impassable cell, a
+// search seed: the kinodynamic PRM's first solutions, refined in their homotopy class
+// (search::CandidateRefiner). `initial_guess: flat` keeps 004's flat-ground heuristic alone (the
+// paper's behaviour).
+//
+// Solvers: shooting / collocation start from a seed's trajectory; the parametric methods
+// (newton, newton_fd, ipopt, ceres) from the polynomial controls fitted to it, through the
+// flat-ground optimum. `auto` uses collocation. Every attempt is verified (the verdict); the best
+// converged cost wins; a second word is tried when the first fails or is within
+// `retry_length_ratio` of it.
+
+#include <atomic>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "terratraj/models/terrain_following_model.hpp"
+#include "terratraj/models/trajectory_verdict.hpp"
+#include "terratraj/ocp/boundary_value_problem.hpp"
+#include "terratraj/ocp/boundary_value_solver.hpp"
+#include "terratraj/ocp/solve_result.hpp"
+#include "terratraj/ocp/trajectory_verifier.hpp"
+#include "terratraj/ocp/transcription_solver.hpp"
+#include "terratraj/terrain/elevation_map.hpp"
+
+namespace terratraj::refine {
+
+/// The solvers of the core.
+enum class CoreMethod { kAuto, kNewton, kNewtonFd, kIpopt, kCeres, kShooting, kCollocation };
+/// "auto", "newton", ...
+const char* coreMethodName(CoreMethod method);
+
+/// Where the solvers start.
+enum class InitialGuessKind {
+  kAuto,  ///< global seeds (Dubins words, a search where obstacles need one)
+  kFlat,  ///< 004's flat-ground heuristic alone (the paper's behaviour; parametric methods)
+};
+
+/// Settings of solveSeeded().
+struct SeededSolveOptions {
+  CoreMethod method = CoreMethod::kAuto;
+  InitialGuessKind initial_guess = InitialGuessKind::kAuto;
+  /// The parametric methods' settings (criteria, iterations; method set per attempt). Its
+  /// criteria are the verdict's terminal tolerances for every method.
+  ocp::BoundaryValueOptions parametric;
+  /// Shooting / collocation settings (scheme, margins, rounds, max_intervals, clearance);
+  /// transcription.intervals <= 0: one interval per `interval_length_m` of the seed, within
+  /// [min_intervals, max_intervals / 2].
+  ocp::TranscriptionSolveOptions transcription;
+  double interval_length_m = 0.25;    ///< > 0
+  double turning_per_interval = 0.1;  ///< ... plus one interval per this much turning [rad], > 0
+  int min_intervals = 20;             ///< >= 2
+  int max_words = 3;                  ///< Dubins words tried at most, >= 1
+  /// A further word is tried when the previous attempt failed, or when its Dubins length is at
+  /// most this ratio times the shortest's (its optimum on the terrain may be better), >= 1.
+  double retry_length_ratio = 1.2;
+  double seed_spacing_m = 0.1;  ///< samples of a seed path [m], > 0
+  /// Search seed: the PRM's budget [s] when every word crosses an impassable cell (0: none).
+  double search_time_s = 1.0;
+  std::uint64_t search_seed = 1;            ///< the PRM's random seed
+  std::optional<double> time_limit_s;       ///< wall clock of the whole solve [s]; absent: none
+  const std::atomic<bool>* stop = nullptr;  ///< set from outside (SIGINT): no further attempt
+};
+
+/// One attempt: a seed and a solver.
+struct SeedAttempt {
+  std::string seed;    ///< "dubins LSL (12.3 m)", "flat heuristic", "search (prm)"
+  std::string method;  ///< the solver
+  ocp::SolveStatus status = ocp::SolveStatus::kError;
+  std::string reason;
+  double cost = 0.0;  ///< verified cost (NaN without a re-simulation)
+  double time_ms = 0.0;
+};
+
+/// The outcome.
+struct SeededSolution {
+  ocp::SolveStatus status = ocp::SolveStatus::kError;  ///< the verdict's, of the best attempt
+  std::string reason;
+  std::string method;                                       ///< the solver that produced the result
+  std::string initial_guess;                                ///< its seed
+  ocp::VerifiedTrajectory verified;                         ///< the re-simulation of the result
+  models::TrajectoryVerdict verdict;                        ///< the check of verified.trajectory
+  std::optional<ocp::BoundaryValueSolution> parametric;     ///< the result's, parametric
+  std::optional<ocp::VerifiedTranscription> transcription;  ///< the result's, transcription
+  std::vector<ocp::IterationRecord> history;                ///< the result's iterations
+  int iterations = 0;                                       ///< of every attempt
+  std::vector<SeedAttempt> attempts;                        ///< every attempt, in order
+  double total_time_ms = 0.0;
+};
+
+/// Solves `problem` on `vehicle` (map: the verdict's map rules and the obstacles of the seeds;
+/// may be null). Never throws (except std::bad_alloc). Ipopt 3.11 is not thread-safe: one solve
+/// at a time per process.
+SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
+                           const ocp::BoundaryValueProblem& problem,
+                           const terrain::ElevationMap* map, const SeededSolveOptions& options);
+
+}  // namespace terratraj::refine

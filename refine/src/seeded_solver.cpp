@@ -1,0 +1,289 @@
+#include "terratraj/refine/seeded_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "terratraj/ocp/dubins_path.hpp"
+#include "terratraj/ocp/initial_guess.hpp"
+#include "terratraj/ocp/start_at_goal.hpp"
+#include "terratraj/ocp/transcription_guess.hpp"
+#include "terratraj/refine/search_seed.hpp"
+
+namespace terratraj::refine {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string formatLength(double metres) {
+  std::ostringstream text;
+  text.precision(3);
+  text << metres;
+  return text.str();
+}
+
+// A Dubins word as a seed: its path sampled, time-parametrised under the limits.
+struct Seed {
+  std::string name;
+  double length = 0.0;  ///< [m]
+  ocp::TranscriptionGuess guess;
+  double turning = 0.0;  ///< total |heading change| along the path [rad]
+};
+
+// Whether a sampled path crosses a lethal, no-data or off-map cell.
+bool crossesImpassable(const std::vector<ocp::PathPoint2>& points,
+                       const terrain::ElevationMap& map) {
+  for (const ocp::PathPoint2& p : points) {
+    const std::optional<terrain::CellIndex> cell = map.geometry().cellAt({p.x, p.y});
+    if (!cell || map.isNoData(*cell) || map.isLethal(*cell)) return true;
+  }
+  return false;
+}
+
+// The turning radius of the seeds: kappa_max, and omega_max at the faster end speed.
+double seedRadius(const ocp::BoundaryValueProblem& problem) {
+  const models::VehicleLimits& l = problem.limits;
+  const double v_turn = std::max(problem.start.v, problem.goal.v);
+  const double kappa = v_turn > 0.0 ? std::min(l.kappa_max, l.omega_max / v_turn) : l.kappa_max;
+  return 1.0 / kappa;
+}
+
+// The Dubins seeds, shortest first; `blocked` counts the words dropped for crossing an
+// impassable cell of `map`.
+std::vector<Seed> dubinsSeeds(const ocp::BoundaryValueProblem& problem,
+                              const terrain::ElevationMap* map, const SeededSolveOptions& options,
+                              int& blocked) {
+  std::vector<Seed> seeds;
+  blocked = 0;
+  const std::vector<ocp::DubinsPath> paths =
+      ocp::dubinsPaths({problem.start.x, problem.start.y, problem.start.heading},
+                       {problem.goal.x, problem.goal.y, problem.goal.heading}, seedRadius(problem));
+  for (const ocp::DubinsPath& path : paths) {
+    if (static_cast<int>(seeds.size()) >= options.max_words) break;
+    const std::vector<ocp::PathPoint2> points = path.sample(options.seed_spacing_m);
+    if (map != nullptr && crossesImpassable(points, *map)) {
+      ++blocked;
+      continue;
+    }
+    std::vector<Eigen::Vector2d> xy;
+    xy.reserve(points.size());
+    for (const ocp::PathPoint2& p : points) xy.emplace_back(p.x, p.y);
+    std::optional<ocp::TranscriptionGuess> guess =
+        ocp::guessFromPath(xy, problem, options.seed_spacing_m);
+    if (!guess) continue;
+    const double turning =
+        (path.word == ocp::DubinsWord::kLSL || path.word == ocp::DubinsWord::kRSR ||
+         path.word == ocp::DubinsWord::kLSR || path.word == ocp::DubinsWord::kRSL)
+            ? (path.lengths[0] + path.lengths[2]) / path.radius
+            : path.length() / path.radius;
+    seeds.push_back({std::string("dubins ") + ocp::dubinsWordName(path.word) + " (" +
+                         formatLength(path.length()) + " m)",
+                     path.length(), std::move(*guess), turning});
+  }
+  return seeds;
+}
+
+ocp::BoundaryValueMethod parametricMethod(CoreMethod method) {
+  switch (method) {
+    case CoreMethod::kNewtonFd:
+      return ocp::BoundaryValueMethod::kNewtonFd;
+    case CoreMethod::kIpopt:
+      return ocp::BoundaryValueMethod::kIpopt;
+    case CoreMethod::kCeres:
+      return ocp::BoundaryValueMethod::kCeres;
+    default:
+      return ocp::BoundaryValueMethod::kNewton;
+  }
+}
+
+bool isTranscription(CoreMethod method) {
+  return method == CoreMethod::kAuto || method == CoreMethod::kShooting ||
+         method == CoreMethod::kCollocation;
+}
+
+// Keeps the better of the best so far and a new result: converged first, then the lower cost.
+bool better(const SeededSolution& candidate, const SeededSolution& best) {
+  const bool c = candidate.status == ocp::SolveStatus::kConverged;
+  const bool b = best.status == ocp::SolveStatus::kConverged;
+  if (c != b) return c;
+  if (!best.verified.ok) return candidate.verified.ok;
+  return candidate.verified.ok && candidate.verified.cost < best.verified.cost;
+}
+
+}  // namespace
+
+const char* coreMethodName(CoreMethod method) {
+  switch (method) {
+    case CoreMethod::kAuto:
+      return "auto";
+    case CoreMethod::kNewton:
+      return "newton";
+    case CoreMethod::kNewtonFd:
+      return "newton_fd";
+    case CoreMethod::kIpopt:
+      return "ipopt";
+    case CoreMethod::kCeres:
+      return "ceres";
+    case CoreMethod::kShooting:
+      return "shooting";
+    case CoreMethod::kCollocation:
+      return "collocation";
+  }
+  return "?";
+}
+
+namespace {
+
+// One attempt from one seed (null: the flat heuristic) with one solver.
+SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
+                       const ocp::BoundaryValueProblem& problem, const terrain::ElevationMap* map,
+                       const SeededSolveOptions& options, const Seed* seed,
+                       std::optional<double> time_left_s) {
+  SeededSolution out;
+  out.initial_guess = seed != nullptr ? seed->name : "flat heuristic (004)";
+  if (isTranscription(options.method)) {
+    ocp::TranscriptionSolveOptions solve = options.transcription;
+    solve.criteria = options.parametric.criteria;
+    solve.map = map;
+    solve.stop = options.stop;
+    solve.time_limit_s = time_left_s;
+    if (options.method == CoreMethod::kShooting) {
+      solve.transcription.scheme = ocp::TranscriptionScheme::kMultipleShooting;
+    } else if (solve.transcription.scheme == ocp::TranscriptionScheme::kMultipleShooting) {
+      solve.transcription.scheme = ocp::TranscriptionScheme::kHermiteSimpson;
+    }
+    if (solve.transcription.intervals <= 0) {
+      // One interval per interval_length_m of path and per turning_per_interval of heading.
+      const double length = seed != nullptr ? seed->length : 1.0;
+      const double turning = seed != nullptr ? seed->turning : 0.0;
+      const int wanted = static_cast<int>(
+          std::ceil(length / options.interval_length_m + turning / options.turning_per_interval));
+      solve.transcription.intervals = std::clamp(
+          wanted, options.min_intervals, std::max(options.min_intervals, solve.max_intervals / 2));
+    }
+    solve.max_intervals = std::max(solve.max_intervals, solve.transcription.intervals);
+    out.method = options.method == CoreMethod::kShooting ? "shooting" : "collocation";
+    ocp::VerifiedTranscription result =
+        ocp::solveTranscription(vehicle, problem, seed->guess, solve);
+    out.status = result.status;
+    out.reason = result.reason;
+    out.verified = result.verified;
+    out.verdict = result.verdict;
+    out.history = result.history;
+    out.iterations = result.iterations;
+    out.transcription = std::move(result);
+    return out;
+  }
+  ocp::BoundaryValueOptions settings = options.parametric;
+  settings.method = parametricMethod(options.method);
+  if (time_left_s) settings.time_limit_s = *time_left_s;
+  if (seed != nullptr) {
+    std::vector<double> t, v, omega;
+    for (std::size_t i = 0; i < seed->guess.t.size(); ++i) {
+      t.push_back(seed->guess.t[i]);
+      v.push_back(seed->guess.points[i](3));
+      omega.push_back(seed->guess.points[i](4));
+    }
+    settings.initial_q = ocp::fitParametricControls(problem, t, v, omega, seed->length);
+  }
+  out.method = coreMethodName(options.method);
+  ocp::BoundaryValueSolution result = ocp::solveBoundaryValue(vehicle, problem, settings, map);
+  out.status = result.status;
+  out.reason = result.reason;
+  out.verified = result.verified;
+  out.verdict = result.verdict;
+  out.history = result.solver.history;
+  out.iterations = result.solver.iterations;
+  out.parametric = std::move(result);
+  return out;
+}
+
+}  // namespace
+
+SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
+                           const ocp::BoundaryValueProblem& problem,
+                           const terrain::ElevationMap* map, const SeededSolveOptions& options) {
+  const Clock::time_point started = Clock::now();
+  const auto left = [&]() -> std::optional<double> {
+    if (!options.time_limit_s) return std::nullopt;
+    return std::max(0.0, *options.time_limit_s - secondsSince(started));
+  };
+  const auto over = [&] {
+    return (options.stop != nullptr && options.stop->load()) ||
+           (options.time_limit_s && secondsSince(started) >= *options.time_limit_s);
+  };
+  SeededSolution best;
+  best.method = coreMethodName(options.method);
+  best.reason = "no attempt was made";
+  const auto record = [&](SeededSolution result, const Clock::time_point attempt_started) {
+    SeedAttempt a;
+    a.seed = result.initial_guess;
+    a.method = result.method;
+    a.status = result.status;
+    a.reason = result.reason;
+    a.cost = result.verified.ok ? result.verified.cost : std::numeric_limits<double>::quiet_NaN();
+    a.time_ms = 1e3 * secondsSince(attempt_started);
+    const int iterations = best.iterations + result.iterations;
+    std::vector<SeedAttempt> attempts = std::move(best.attempts);
+    attempts.push_back(a);
+    if (attempts.size() == 1 || better(result, best)) best = std::move(result);
+    best.attempts = std::move(attempts);
+    best.iterations = iterations;
+  };
+  const bool transcription = isTranscription(options.method);
+  if (options.initial_guess == InitialGuessKind::kFlat ||
+      ocp::startMeetsGoal(problem, options.parametric.criteria)) {
+    if (transcription) {
+      // The flat heuristic for a transcription: the parametric (newton) flat solution's
+      // trajectory, as 004 would have it.
+      ocp::BoundaryValueOptions flat = options.parametric;
+      flat.method = ocp::BoundaryValueMethod::kNewton;
+      const ocp::BoundaryValueSolution parametric =
+          ocp::solveBoundaryValue(vehicle, problem, flat, map);
+      std::optional<ocp::TranscriptionGuess> guess;
+      if (parametric.verified.ok) guess = ocp::guessFromTrajectory(parametric.verified.trajectory);
+      if (!guess) guess = ocp::TranscriptionGuess{};
+      const Seed seed{"flat heuristic (004) via newton", parametric.verified.length, *guess, 0.0};
+      const Clock::time_point t0 = Clock::now();
+      record(attempt(vehicle, problem, map, options, &seed, left()), t0);
+    } else {
+      const Clock::time_point t0 = Clock::now();
+      record(attempt(vehicle, problem, map, options, nullptr, left()), t0);
+    }
+  } else {
+    int blocked = 0;
+    const std::vector<Seed> seeds = dubinsSeeds(problem, map, options, blocked);
+    double shortest = seeds.empty() ? 0.0 : seeds.front().length;
+    for (const Seed& seed : seeds) {
+      if (!best.attempts.empty()) {
+        if (over()) break;
+        const bool failed = best.status != ocp::SolveStatus::kConverged;
+        if (!failed && seed.length > options.retry_length_ratio * shortest) break;
+      }
+      const Clock::time_point t0 = Clock::now();
+      record(attempt(vehicle, problem, map, options, &seed, left()), t0);
+    }
+    // Obstacles in the way of every word (or no word converged): a search seed.
+    if (best.status != ocp::SolveStatus::kConverged && map != nullptr &&
+        options.search_time_s > 0.0 && (seeds.empty() || blocked > 0) && !over()) {
+      const Clock::time_point t0 = Clock::now();
+      record(solveFromSearch(vehicle, problem, *map, options, left()), t0);
+    }
+    if (best.attempts.empty()) {
+      best.status = ocp::SolveStatus::kInfeasible;
+      best.reason =
+          "no seed: every Dubins word crosses an impassable cell and no search seed "
+          "was allowed";
+    }
+  }
+  best.total_time_ms = 1e3 * secondsSince(started);
+  return best;
+}
+
+}  // namespace terratraj::refine
