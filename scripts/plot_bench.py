@@ -6,6 +6,7 @@ Usage: plot_bench.py REQUEST.json, where the request holds {"result": the result
 "png": the figure to write, "files": where to list the files written (JSON)}.
 """
 import json
+import os
 import math
 import sys
 
@@ -48,8 +49,52 @@ def profile(ax, rows, measure, title):
     ax.grid(True, alpha=0.3)
 
 
+ROBUST_METHODS = ["auto", "newton", "ipopt", "ceres", "collocation"]
+
+
+def robustness(result, png):
+    """Success per method and set, and the cost over the Dubins bound (constant-speed turns)."""
+    rows = [r for r in result["rows"] if r.get("family") == "robustness"
+            and r.get("status") != "skipped"]
+    fig, axes = plt.subplots(1, 2, figsize=(14, 5))
+    methods = [m for m in ROBUST_METHODS if any(r["solver"] == m for r in rows)]
+    rates = []
+    for m in methods:
+        mine = [r for r in rows if r["solver"] == m]
+        rates.append(sum(1 for r in mine if r.get("status") == "converged") / max(len(mine), 1))
+    axes[0].bar(methods, rates)
+    axes[0].axhline(0.99, color="k", ls="--", lw=0.8, label="99 % (default method)")
+    axes[0].axhline(0.95, color="gray", ls=":", lw=0.8, label="95 %")
+    axes[0].set_ylim(0, 1.02)
+    axes[0].set_ylabel("converged and verified")
+    axes[0].set_title("success on the robustness set")
+    axes[0].legend(loc="lower right")
+    data, labels = [], []
+    for m in methods:
+        values = [r["cost_over_bound"] for r in rows
+                  if r["solver"] == m and r.get("status") == "converged"
+                  and isinstance(r.get("cost_over_bound"), (int, float))]
+        if values:
+            data.append(values)
+            labels.append(m)
+    if data:
+        axes[1].boxplot(data, labels=labels, whis=(0, 100))
+    axes[1].axhline(1.02, color="k", ls="--", lw=0.8)
+    axes[1].axhline(1.10, color="gray", ls=":", lw=0.8)
+    axes[1].set_ylabel("time / Dubins length at v (converged)")
+    axes[1].set_title("constant-speed turns: cost over the Dubins bound")
+    fig.suptitle(title(result))
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    return [png]
+
+
 def convergence(result, png):
-    rows = result["rows"]
+    rows = [r for r in result["rows"] if r.get("family") != "robustness"]
+    files = []
+    if len(rows) != len(result["rows"]):
+        stem, ext = os.path.splitext(png)
+        files = robustness(result, stem + "-robustness" + (ext or ".png"))
     fig, axes = plt.subplots(1, 3, figsize=(17, 5))
     profile(axes[0], rows, "time_ms", "performance profile: time")
     profile(axes[1], rows, "iterations", "performance profile: iterations")
@@ -77,7 +122,7 @@ def convergence(result, png):
     fig.suptitle(title(result))
     fig.tight_layout()
     fig.savefig(png, dpi=110)
-    return [png]
+    return [png] + files
 
 
 def planners(result, png):
@@ -238,7 +283,7 @@ def main():
     with open(request["result"]) as f:
         result = json.load(f)
     draw = {"convergence": convergence, "planners": planners, "refine": refine,
-            "tables": tables}[result["suite"]]
+            "tables": tables, "robustness": robustness}[result["suite"]]
     files = draw(result, request["png"])
     with open(request["files"], "w") as f:
         json.dump(files, f)

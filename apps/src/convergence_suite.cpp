@@ -232,6 +232,9 @@ class ConvergenceSuite final : public BenchmarkSuite {
     std::vector<std::filesystem::path> files;
     if (settings_.data_dir.empty()) return files;
     for (const DemSpec& dem : kDems) files.push_back(settings_.data_dir / dem.file);
+    for (const std::filesystem::path& file : robustnessInputs(settings_)) {
+      if (std::find(files.begin(), files.end(), file) == files.end()) files.push_back(file);
+    }
     return files;
   }
 
@@ -254,10 +257,16 @@ class ConvergenceSuite final : public BenchmarkSuite {
         }
       }
     }
+    // The robustness set (its rows carry "family": "robustness"; summarised apart).
+    for (BenchmarkCase& c : robustnessCases(settings_)) out.push_back(std::move(c));
     return out;
   }
 
-  nlohmann::json summarize(const nlohmann::json& rows) const override {
+  nlohmann::json summarize(const nlohmann::json& all_rows) const override {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const nlohmann::json& row : all_rows) {
+      if (row.value("family", "") != "robustness") rows.push_back(row);
+    }
     // The best re-simulated cost per problem among the solvers that converged on it.
     std::map<std::string, double> best;
     for (const nlohmann::json& row : rows) {
@@ -325,7 +334,8 @@ class ConvergenceSuite final : public BenchmarkSuite {
              "formulation (parametric: newton_fd, newton, ipopt, ceres; "
              "transcription: shooting, collocation)"},
             {"solvers", solvers},
-            {"sets", sets_json}};
+            {"sets", sets_json},
+            {"robustness", summarizeRobustness(all_rows)}};
   }
 
   std::string summaryText(const nlohmann::json& summary) const override {
@@ -344,6 +354,7 @@ class ConvergenceSuite final : public BenchmarkSuite {
            << figureText(s["cost_relative_to_best"], "max") << "    "
            << figureText(s["time_over_newton_fd"], "median") << '\n';
     }
+    if (summary.contains("robustness")) text << robustnessText(summary["robustness"]);
     return text.str();
   }
 

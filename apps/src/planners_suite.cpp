@@ -102,6 +102,7 @@ nlohmann::json prmRow(const search::BenchmarkWorld& w, std::uint64_t seed, doubl
                         {"cost_10s", costAt(r, 10000.0)},
                         {"cost_final_s", jsonNumber(r.best_cost_s)},
                         {"budget_s", budget_s},
+                        {"time_dependent", true},
                         {"trapped_fraction", r.trappedFraction()},
                         {"nodes", r.nodes}};
   row["cost_history"] = nlohmann::json::array();
@@ -122,7 +123,8 @@ nlohmann::json omplRow(const search::BenchmarkWorld& w, OmplPlanner planner, std
       {"solved", r.solved},
       {"first_ms", r.first_ms ? jsonNumber(*r.first_ms) : nlohmann::json(nullptr)},
       {"planning_ms", r.planning_ms},
-      {"budget_s", budget_s}};
+      {"budget_s", budget_s},
+      {"time_dependent", true}};
   double at_1s = std::numeric_limits<double>::infinity();
   for (const auto& [ms, cost] : r.cost_history) {
     if (ms <= 1000.0) at_1s = cost;
@@ -151,6 +153,7 @@ nlohmann::json latticeRows(const search::BenchmarkWorld& w, double budget_s) {
                 {"first_cost_s", jsonNumber(a.first_solution_cost_s)},
                 {"best_cost_s", jsonNumber(a.best_cost_s)},
                 {"planning_ms", a.planning_time_ms},
+                {"time_dependent", true},
                 {"expansions", a.search.expansions}};
   if (a.status == search::PlanStatus::kSolved) addCheck(out["ara"], w.problem, a.trajectory);
   const search::TaeaslPlanner taeasl(graph);
@@ -164,6 +167,7 @@ nlohmann::json latticeRows(const search::BenchmarkWorld& w, double budget_s) {
   out["taeasl"] = {{"status", search::planStatusName(t.status)},
                    {"classes", classes},
                    {"planning_ms", t.planning_time_ms},
+                   {"time_dependent", true},
                    {"check_ok", all_ok}};
   return out;
 }

@@ -170,8 +170,9 @@ class RefineSuite final : public BenchmarkSuite {
                      terrain::TerrainKind kind, std::uint64_t seed) const {
     const int size = settings_.quick ? 96 : 256;
     const double budget = settings_.quick ? 0.3 : 1.0;
-    nlohmann::json row = {{"planner", planner}, {"kind", kind_name},  {"seed", seed},
-                          {"map_cells", size},  {"vehicle", "point"}, {"budget_s", budget}};
+    nlohmann::json row = {{"planner", planner},    {"kind", kind_name},  {"seed", seed},
+                          {"map_cells", size},     {"vehicle", "point"}, {"budget_s", budget},
+                          {"time_dependent", true}};
     search::BenchmarkWorld w(search::generateBenchmarkMap(kind, size, seed),
                              search::BenchmarkVehicle::kPoint,
                              search::benchmarkLimits(kPitchMaxDeg));

@@ -161,9 +161,10 @@ class TablesSuite final : public BenchmarkSuite {
                      const std::string& kind) const {
     const int size = settings_.quick ? 128 : 256;
     const double budget = settings_.quick ? 0.3 : 1.0;
-    nlohmann::json row = {{"tables", kind},       {"map_seed", map_seed},
-                          {"seed", planner_seed}, {"map_cells", size},
-                          {"budget_s", budget},   {"log_seed", settings_.seed}};
+    nlohmann::json row = {{"tables", kind},        {"map_seed", map_seed},
+                          {"seed", planner_seed},  {"map_cells", size},
+                          {"budget_s", budget},    {"log_seed", settings_.seed},
+                          {"time_dependent", true}};
     const Tables& t = tables(settings_.seed);
     row["log_states"] = t.log_states;
     search::BenchmarkWorld w(

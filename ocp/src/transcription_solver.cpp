@@ -37,6 +37,23 @@ BoundaryValueProblem tightened(const BoundaryValueProblem& problem, double speed
   return out;
 }
 
+// The largest relative excess of the broken limits of each margin group: (v_max, a_max,
+// omega_max) and (kappa_max, sigma_max, pitch_max, roll_max, the tables).
+std::pair<double, double> relativeExcess(const models::CheckReport& check) {
+  double speed = 0.0, other = 0.0;
+  for (const models::CheckViolation& v : check.violations) {
+    if (!(v.bound > 0.0) || !std::isfinite(v.amount)) continue;
+    const double excess = v.amount / v.bound;
+    if (v.limit == "v_max" || v.limit == "a_max" || v.limit == "omega_max") {
+      speed = std::max(speed, excess);
+    } else if (v.limit == "kappa_max" || v.limit == "sigma_max" || v.limit == "pitch_max" ||
+               v.limit == "roll_max" || v.limit.rfind("table_", 0) == 0) {
+      other = std::max(other, excess);
+    }
+  }
+  return {speed, other};
+}
+
 bool clipsMap(const models::CheckReport& check) {
   return check.find("lethal") != nullptr || check.find("no_data") != nullptr;
 }
@@ -144,7 +161,7 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
   verification.clearance.min_clearance = 0.0;
   const TranscriptionModel model(vehicle, problem, verification);
   double speed_margin = options.speed_margin, limit_margin = options.limit_margin;
-  bool doubled = false;
+  bool doubled = false, widened = false;
   TranscriptionGuess start = guess;
   for (int round = 0; round <= options.max_rounds; ++round) {
     if (round > 0 && over()) {
@@ -188,14 +205,29 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
     } else if (clipsMap(out.verdict.check) && transcription.model.clearance.map != nullptr &&
                transcription.model.clearance.min_clearance < options.clearance_floor) {
       transcription.model.clearance.min_clearance = options.clearance_floor;
-    } else if (!doubled && can_double) {
-      // A limit broken between the points: the overshoot shrinks with the interval ...
+    } else if (widened && !doubled && can_double) {
+      // A limit still broken between the points: the overshoot shrinks with the interval.
       transcription.intervals *= 2;
       doubled = true;
     } else {
-      // ... or with wider margins (which cost optimality).
-      speed_margin = std::min(0.25, 4.0 * std::max(speed_margin, 1e-4));
-      limit_margin = std::min(0.25, 2.0 * std::max(limit_margin, 1e-3));
+      // A limit broken between the points (the states are quadratic there): margins wider by
+      // the measured excess, with room to spare (margins cost optimality, little).
+      const auto [speed_excess, limit_excess] = relativeExcess(out.verdict.check);
+      const double speed_floor = std::max(speed_margin, 1e-4);
+      const double limit_floor = std::max(limit_margin, 1e-3);
+      if (speed_excess > 0.0) {
+        speed_margin =
+            std::min(0.25, std::max(2.0 * speed_floor, speed_floor + 2.0 * speed_excess));
+      }
+      if (limit_excess > 0.0) {
+        limit_margin =
+            std::min(0.25, std::max(2.0 * limit_floor, limit_floor + 2.0 * limit_excess));
+      }
+      if (speed_excess == 0.0 && limit_excess == 0.0) {
+        speed_margin = std::min(0.25, 4.0 * speed_floor);
+        limit_margin = std::min(0.25, 2.0 * limit_floor);
+      }
+      widened = true;
     }
   }
   return finish();

@@ -118,6 +118,14 @@ bool better(const SeededSolution& candidate, const SeededSolution& best) {
 
 }  // namespace
 
+ocp::TranscriptionSolveOptions defaultCoreTranscription() {
+  ocp::TranscriptionSolveOptions options;
+  options.transcription.intervals = 0;
+  options.transcription.linear_controls = true;
+  options.transcription.max_iterations = 500;
+  return options;
+}
+
 const char* coreMethodName(CoreMethod method) {
   switch (method) {
     case CoreMethod::kAuto:
@@ -180,6 +188,10 @@ SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
     out.transcription = std::move(result);
     return out;
   }
+  ocp::BoundaryValueProblem posed = problem;
+  if (options.method == CoreMethod::kIpopt) {
+    posed.orders.speed = std::max(posed.orders.speed, options.ipopt_speed_order);
+  }
   ocp::BoundaryValueOptions settings = options.parametric;
   settings.method = parametricMethod(options.method);
   if (time_left_s) settings.time_limit_s = *time_left_s;
@@ -190,10 +202,10 @@ SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
       v.push_back(seed->guess.points[i](3));
       omega.push_back(seed->guess.points[i](4));
     }
-    settings.initial_q = ocp::fitParametricControls(problem, t, v, omega, seed->length);
+    settings.initial_q = ocp::fitParametricControls(posed, t, v, omega, seed->length);
   }
   out.method = coreMethodName(options.method);
-  ocp::BoundaryValueSolution result = ocp::solveBoundaryValue(vehicle, problem, settings, map);
+  ocp::BoundaryValueSolution result = ocp::solveBoundaryValue(vehicle, posed, settings, map);
   out.status = result.status;
   out.reason = result.reason;
   out.verified = result.verified;

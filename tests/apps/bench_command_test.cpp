@@ -55,7 +55,8 @@ TEST_F(BenchCommandTest, ConvergenceRowsAreReSimulatedResults) {
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json result = read(path("c.json"));
   EXPECT_EQ(result["suite"], "convergence");
-  EXPECT_EQ(result["cases_total"], (5 + 6 + 3) * 7);  // no DEM problems without a data dir
+  // No DEM problems without a data dir; the robustness set's flat turns and turn-backs.
+  EXPECT_EQ(result["cases_total"], (5 + 6 + 3) * 7 + (4 + 2) * 5);
   ASSERT_EQ(result["rows"].size(), 6u);
   std::set<std::string> solvers;
   for (const nlohmann::json& row : result["rows"]) {
@@ -127,7 +128,8 @@ TEST_F(BenchCommandTest, WorkersRunTheCasesInSeparateProcesses) {
   options.suite = "convergence";
   options.settings.quick = true;
   options.cases = "";
-  // Cases 0, 29, 58, 87: flat fan (newton_fd, newton), lattice (ipopt), hill (ceres).
+  // Cases 0, 29, 58, 87, 116: flat fan (newton_fd, newton), lattice (ipopt), hill (ceres), a
+  // robustness turn (ceres).
   options.shard = "1/29";
   options.jobs = 2;
   options.executable = TERRATRAJ_EXECUTABLE;
@@ -137,11 +139,13 @@ TEST_F(BenchCommandTest, WorkersRunTheCasesInSeparateProcesses) {
   context.log = spdlog::default_logger();
   ASSERT_EQ(runBench(options, context), 0) << err.str();
   const nlohmann::json result = read(path("w.json"));
-  ASSERT_EQ(result["rows"].size(), 4u) << err.str();
+  ASSERT_EQ(result["rows"].size(), 5u) << err.str();
   EXPECT_EQ(result["rows"][0]["case"], 0);
   EXPECT_EQ(result["rows"][1]["case"], 29);
   EXPECT_EQ(result["rows"][2]["case"], 58);
   EXPECT_EQ(result["rows"][3]["case"], 87);
+  EXPECT_EQ(result["rows"][4]["case"], 116);
+  EXPECT_EQ(result["rows"][4]["family"], "robustness");
   EXPECT_EQ(result["processes"], 2);
   for (const nlohmann::json& row : result["rows"]) {
     EXPECT_EQ(row["status"], "converged") << row.dump();

@@ -42,6 +42,10 @@ enum class InitialGuessKind {
   kFlat,  ///< 004's flat-ground heuristic alone (the paper's behaviour; parametric methods)
 };
 
+/// The core's transcription defaults: intervals from the seed (transcription.intervals 0),
+/// piecewise-linear controls (limits hold between nodes), 500 Ipopt iterations a round.
+ocp::TranscriptionSolveOptions defaultCoreTranscription();
+
 /// Settings of solveSeeded().
 struct SeededSolveOptions {
   CoreMethod method = CoreMethod::kAuto;
@@ -52,7 +56,7 @@ struct SeededSolveOptions {
   /// Shooting / collocation settings (scheme, margins, rounds, max_intervals, clearance);
   /// transcription.intervals <= 0: one interval per `interval_length_m` of the seed, within
   /// [min_intervals, max_intervals / 2].
-  ocp::TranscriptionSolveOptions transcription;
+  ocp::TranscriptionSolveOptions transcription = defaultCoreTranscription();
   double interval_length_m = 0.25;    ///< > 0
   double turning_per_interval = 0.1;  ///< ... plus one interval per this much turning [rad], > 0
   int min_intervals = 20;             ///< >= 2
@@ -60,6 +64,11 @@ struct SeededSolveOptions {
   /// A further word is tried when the previous attempt failed, or when its Dubins length is at
   /// most this ratio times the shortest's (its optimum on the terrain may be better), >= 1.
   double retry_length_ratio = 1.2;
+  /// ipopt (which holds v_max and a_max): the speed polynomial's order at least this, so the
+  /// speed is free to rise to v_max and return to the end speeds (rest to rest works), >= 1.
+  /// newton and ceres hold no limit and keep the problem's order (a free speed would be
+  /// unbounded for them).
+  int ipopt_speed_order = 3;
   double seed_spacing_m = 0.1;  ///< samples of a seed path [m], > 0
   /// Search seed: the PRM's budget [s] when every word crosses an impassable cell (0: none).
   double search_time_s = 1.0;

@@ -1,0 +1,115 @@
+// refine::solveSeeded, the core's default: the robustness set in unit-test size (other seeds
+// than `bench convergence`): constant-speed curvature-limited turns within the Dubins band,
+// rest-to-rest turn-backs, rest to rest by the parametric ipopt (free speed). Each written
+// trajectory is re-checked here, row by row, against the limits and the goal (not by the
+// solver's own verdict).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "terratraj/models/point_attitude_model.hpp"
+#include "terratraj/ocp/dubins_path.hpp"
+#include "terratraj/ocp/robustness_sets.hpp"
+#include "terratraj/refine/seeded_solver.hpp"
+#include "terratraj/terrain/terrain_surface.hpp"
+
+namespace terratraj::refine {
+namespace {
+
+namespace sets = ocp::problem_sets;
+
+// Every row within the limits (1e-3 relative, as the contract's verdict), the last row at the
+// goal within 1e-3 m and the start at the start.
+void expectWithinLimitsAndAtGoal(const ocp::BoundaryValueProblem& problem,
+                                 const models::Trajectory& trajectory) {
+  ASSERT_FALSE(trajectory.samples.empty());
+  const models::VehicleLimits& l = problem.limits;
+  const double slack = 1.0 + 1e-3;
+  for (std::size_t i = 0; i < trajectory.samples.size(); ++i) {
+    const models::TrajectorySample& s = trajectory.samples[i];
+    EXPECT_LE(s.v, l.v_max * slack + 1e-6) << "row " << i + 1;
+    EXPECT_LE(std::abs(s.omega), l.omega_max * slack + 1e-6) << "row " << i + 1;
+    EXPECT_LE(std::abs(s.curvature), l.kappa_max * slack + 1e-6) << "row " << i + 1;
+    if (i > 0) {
+      const models::TrajectorySample& p = trajectory.samples[i - 1];
+      const double dt = s.t - p.t;
+      ASSERT_GT(dt, 0.0) << "row " << i + 1;
+      EXPECT_LE(std::abs(s.v - p.v) / dt, l.a_max * slack + 1e-6) << "row " << i + 1;
+    }
+  }
+  const models::TrajectorySample& first = trajectory.samples.front();
+  const models::TrajectorySample& last = trajectory.samples.back();
+  EXPECT_NEAR(first.x, problem.start.x, 1e-6);
+  EXPECT_NEAR(first.y, problem.start.y, 1e-6);
+  EXPECT_LT(std::hypot(last.x - problem.goal.x, last.y - problem.goal.y), 1e-3);
+  EXPECT_LT(std::abs(std::remainder(last.heading - problem.goal.heading, 2 * M_PI)), 1e-3);
+}
+
+class SeededSolverTest : public ::testing::Test {
+ protected:
+  SeededSolverTest()
+      : map_(sets::openFlatMap()),
+        surface_(map_, terrain::Interpolation::kBicubic),
+        vehicle_(surface_) {}
+
+  SeededSolution solve(const ocp::BoundaryValueProblem& problem, CoreMethod method) const {
+    SeededSolveOptions options;
+    options.method = method;
+    options.time_limit_s = 60.0;
+    return solveSeeded(vehicle_, problem, &map_, options);
+  }
+
+  terrain::ElevationMap map_;
+  terrain::TerrainSurface surface_;
+  models::PointAttitudeModel vehicle_;
+};
+
+// At 1 m/s with v_max 1 m/s the speed cannot rise: the time is the path's length, at least
+// the Dubins length (up to the clothoids of sigma_max); the default is within 10 % of it.
+TEST_F(SeededSolverTest, ConstantSpeedTurnsAreWithinTheDubinsBand) {
+  for (const ocp::BoundaryValueProblem& problem : sets::constantSpeedTurns(3, 7)) {
+    const SeededSolution s = solve(problem, CoreMethod::kAuto);
+    ASSERT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
+    expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);
+    const double dubins =
+        ocp::dubinsPaths({problem.start.x, problem.start.y, problem.start.heading},
+                         {problem.goal.x, problem.goal.y, problem.goal.heading}, 1.0)
+            .front()
+            .length();
+    const double duration = s.verified.trajectory.samples.back().t;
+    EXPECT_GE(duration / dubins, 0.998);
+    EXPECT_LE(duration / dubins, 1.10) << s.initial_guess;
+  }
+}
+
+// Rest to rest, the goal behind the start: the speed rises and returns to 0.
+TEST_F(SeededSolverTest, RestToRestTurnBacksConverge) {
+  for (const ocp::BoundaryValueProblem& problem : sets::turnBacks(2, 7)) {
+    const SeededSolution s = solve(problem, CoreMethod::kAuto);
+    ASSERT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
+    EXPECT_EQ(s.method, "collocation");
+    expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);
+    double top = 0.0;
+    for (const models::TrajectorySample& row : s.verified.trajectory.samples) {
+      top = std::max(top, row.v);
+    }
+    EXPECT_GT(top, 0.5);  // not crawling: a_max 0.5 m/s^2 over 2-5 m allows about 1 m/s
+  }
+}
+
+// The parametric ipopt leaves the speed free (speed order 3) and holds v_max and a_max: the
+// smallest rest-to-rest problem is solved.
+TEST_F(SeededSolverTest, ParametricIpoptSolvesRestToRest) {
+  ocp::BoundaryValueProblem problem;
+  problem.start = {10.0, 10.0, 0.0, 0.0, 0.0};
+  problem.goal = {16.0, 11.0, 0.3, 0.0, 0.0};
+  problem.limits = sets::roverLimits();
+  const SeededSolution s = solve(problem, CoreMethod::kIpopt);
+  ASSERT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
+  expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);
+  ASSERT_TRUE(s.parametric.has_value());
+}
+
+}  // namespace
+}  // namespace terratraj::refine
