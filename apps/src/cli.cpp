@@ -281,11 +281,14 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   CLI::App* bench_command = app.add_subcommand(
       "bench",
       "Benchmark suites (docs/benchmarks.md): convergence (every boundary-value solver on the "
-      "004 problem sets and random problems on the real DEMs), planners (001's size and "
+      "004 problem sets and random problems on the real DEMs, and the robustness set), "
+      "robustness (the core's robustness set alone: turns, turn-backs, every vehicle on the "
+      "DEMs), planners (001's size and "
       "expansiveness sweeps, the lattice searches), refine (candidates against their "
       "refinements), tables (003 IV: physics-derived against data-driven tables). Writes one "
       "JSON file per run; `bench merge` joins shards.");
-  bench_command->add_option("SUITE", bench.suite, "convergence | planners | refine | tables");
+  bench_command->add_option("SUITE", bench.suite,
+                            "convergence | robustness | planners | refine | tables");
   bench_command->add_flag("--quick", bench.settings.quick,
                           "a small subset of every set (seconds instead of minutes)");
   bench_command->add_option("--seed", bench.settings.seed, "first seed of every random choice")

@@ -177,9 +177,15 @@ class IpoptTranscription final : public Ipopt::TNLP {
     record.step = alpha_pr;
     history_.push_back(record);
     last_iteration_ = iter;
-    if (options_.time_limit_s && secondsSince(started_) > *options_.time_limit_s) {
-      timed_out_ = true;
-      return false;
+    if (options_.time_limit_s) {
+      // Stop when the next iteration (as long as the last one) would end past the limit.
+      const double elapsed = secondsSince(started_);
+      const double step = elapsed - previous_elapsed_;
+      previous_elapsed_ = elapsed;
+      if (elapsed + step > *options_.time_limit_s) {
+        timed_out_ = true;
+        return false;
+      }
     }
     return true;
   }
@@ -209,6 +215,7 @@ class IpoptTranscription final : public Ipopt::TNLP {
   Eigen::VectorXd final_x_, final_lambda_;
   bool finalized_ = false, timed_out_ = false;
   int last_iteration_ = 0;
+  double previous_elapsed_ = 0.0;  // [s] at the previous iteration
 };
 
 // Initial variables: the guess interpolated at the point times (scaled to the guess's own

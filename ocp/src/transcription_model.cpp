@@ -92,12 +92,14 @@ models::AttitudeStatus TranscriptionModel::evaluate(const PointVector& w,
     out.constraint_jacobian(kPitchRow - kFirstPathRow, kVDot) += d_platform_da;
     out.constraint_jacobian(kPitchRow + 1 - kFirstPathRow, kVDot) -= d_platform_da;
     const models::SegwaySlopeBounds& bounds = options_.segway->lookups.bounds;
-    const double v_limit = bounds.speedLimit(pitch);
-    const double a_limit = bounds.accelerationLimit(pitch);
+    const double scale = options_.segway->bound_scale;
+    const double v_limit = scale * bounds.speedLimit(pitch);
+    const double a_limit = scale * bounds.accelerationLimit(pitch);
     const double dv_ds =
-        (bounds.speedLimit(pitch + kLookupStep) - bounds.speedLimit(pitch - kLookupStep)) /
+        scale * (bounds.speedLimit(pitch + kLookupStep) - bounds.speedLimit(pitch - kLookupStep)) /
         (2.0 * kLookupStep);
-    const double da_ds = (bounds.accelerationLimit(pitch + kLookupStep) -
+    const double da_ds = scale *
+                         (bounds.accelerationLimit(pitch + kLookupStep) -
                           bounds.accelerationLimit(pitch - kLookupStep)) /
                          (2.0 * kLookupStep);
     const int row = path_rows_;

@@ -169,6 +169,7 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
       break;
     }
     transcription.time_limit_s = left();
+    if (transcription.model.segway) transcription.model.segway->bound_scale = 1.0 - speed_margin;
     out.solution = solveDirectTranscription(vehicle, tightened(problem, speed_margin, limit_margin),
                                             start, transcription);
     verifyTranscription(model, options.criteria, options.map, out);
@@ -212,7 +213,14 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
     } else {
       // A limit broken between the points (the states are quadratic there): margins wider by
       // the measured excess, with room to spare (margins cost optimality, little).
-      const auto [speed_excess, limit_excess] = relativeExcess(out.verdict.check);
+      auto [speed_excess, limit_excess] = relativeExcess(out.verdict.check);
+      const LimitViolation& segway = out.verified.violation;
+      if (segway.limit.rfind("segway", 0) == 0 && segway.amount > 0.0) {
+        // The Segway's look-ups (checked on the re-simulation only), in the speed group.
+        const double bound =
+            segway.limit == "segway_slope_v_max" ? problem.limits.v_max : problem.limits.a_max;
+        speed_excess = std::max(speed_excess, segway.amount / std::max(bound, 1e-9));
+      }
       const double speed_floor = std::max(speed_margin, 1e-4);
       const double limit_floor = std::max(limit_margin, 1e-3);
       if (speed_excess > 0.0) {

@@ -111,5 +111,39 @@ TEST_F(SeededSolverTest, ParametricIpoptSolvesRestToRest) {
   ASSERT_TRUE(s.parametric.has_value());
 }
 
+// A U-turn where it stands (same position, heading + 180 deg, rest to rest): a valid problem,
+// solved by a loop within the curvature limit.
+TEST_F(SeededSolverTest, UTurnAtTheSamePositionIsSolved) {
+  ocp::BoundaryValueProblem problem;
+  problem.start = {15.0, 15.0, 0.0, 0.0, 0.0};
+  problem.goal = {15.0, 15.0, M_PI, 0.0, 0.0};
+  problem.limits = sets::roverLimits();
+  const SeededSolution s = solve(problem, CoreMethod::kAuto);
+  ASSERT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
+  expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);
+  EXPECT_GT(s.verified.length, M_PI);  // at least half a circle of radius 1 m
+}
+
+// A goal boxed in by lethal cells: `infeasible` with the reason, within the time limit.
+TEST_F(SeededSolverTest, BoxedInGoalIsInfeasibleWithItsReason) {
+  terrain::GridLayer& lethal = map_.addLayer(terrain::layer_names::kLethal);
+  for (int row = 60; row <= 80; ++row) {
+    for (int col = 60; col <= 80; ++col) {
+      const bool wall = row <= 62 || row >= 78 || col <= 62 || col >= 78;
+      if (wall) lethal(row, col) = 1.0f;
+    }
+  }
+  ocp::BoundaryValueProblem problem;
+  problem.start = {5.0, 5.0, 0.0, 0.0, 0.0};
+  problem.goal = {17.5, 17.5, 0.0, 0.0, 0.0};  // the box's centre (cells 60-80 of 0.25 m)
+  problem.limits = sets::roverLimits();
+  SeededSolveOptions options;
+  options.time_limit_s = 20.0;
+  const SeededSolution s = solveSeeded(vehicle_, problem, &map_, options);
+  EXPECT_EQ(s.status, ocp::SolveStatus::kInfeasible) << s.reason;
+  EXPECT_NE(s.reason.find("impassable"), std::string::npos) << s.reason;
+  EXPECT_LT(s.total_time_ms, 21000.0);
+}
+
 }  // namespace
 }  // namespace terratraj::refine

@@ -41,6 +41,9 @@ using ConstraintJacobian = Eigen::Matrix<double, Eigen::Dynamic, kPointSize>;
 /// acceleration are bounded by the slope look-ups.
 struct SegwayConstraints {
   models::SegwayLookups lookups;
+  /// The slope-dependent speed and acceleration bounds times this, in (0, 1] (the verification
+  /// rounds' margin; 1: the look-ups as they are).
+  double bound_scale = 1.0;
 };
 
 /// Keeping away from lethal and no-data cells (docs/optimal-control.md): a smooth constraint
