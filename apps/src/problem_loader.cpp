@@ -691,7 +691,8 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
       ctx, field,
       {"method", "intervals", "max_iterations", "tolerance", "time_limit_s", "yaw_rate_order",
        "speed_order", "scheme", "shooting_controls", "hessian", "control_effort",
-       "mesh_refinement_rounds", "mesh_refinement_tolerance", "min_clearance_m", "max_intervals"});
+       "mesh_refinement_rounds", "mesh_refinement_tolerance", "min_clearance_m", "max_intervals",
+       "initial_guess", "transcription_max_iterations"});
   SolverSpec solver;
   if (const std::optional<Field> method = map.find("method")) {
     solver.method = readEnum<SolverMethod>(ctx, *method, parseSolverMethod, solverMethodNames());

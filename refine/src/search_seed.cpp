@@ -14,7 +14,7 @@ namespace terratraj::refine {
 SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
                                const ocp::BoundaryValueProblem& problem,
                                const terrain::ElevationMap& map, const SeededSolveOptions& options,
-                               std::optional<double> time_left_s) {
+                               std::optional<double> time_left_s, const std::string& why) {
   SeededSolution out;
   out.method = "collocation";
   out.initial_guess = "search (prm first solution)";
@@ -29,9 +29,9 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
   query.goal.position = {problem.goal.x, problem.goal.y};
   query.goal.heading = problem.goal.heading;
   query.goal.v = problem.goal.v;
-  if (const std::optional<std::string> why = query.validate()) {
+  if (const std::optional<std::string> invalid = query.validate()) {
     out.status = ocp::SolveStatus::kInfeasible;
-    out.reason = "no search seed: " + *why;
+    out.reason = "no search seed: " + *invalid;
     return out;
   }
   search::PrmOptions prm_options;
@@ -43,8 +43,8 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
       search::TerminationCondition::timeLimit(budget).stopAtFirstSolution().stopFlag(options.stop));
   if (plan.status != search::PlanStatus::kSolved) {
     std::ostringstream reason;
-    reason << "every Dubins word crosses an impassable cell, and the PRM found no path in "
-           << budget << " s (" << plan.reason << "): the goal may be unreachable";
+    reason << why << ", and the PRM found no path in " << budget << " s (" << plan.reason
+           << "): the goal may be unreachable";
     out.status = ocp::SolveStatus::kInfeasible;
     out.reason = reason.str();
     return out;

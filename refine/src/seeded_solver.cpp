@@ -281,11 +281,16 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
       const Clock::time_point t0 = Clock::now();
       record(attempt(vehicle, problem, map, options, &seed, left()), t0);
     }
-    // Obstacles in the way of every word (or no word converged): a search seed.
+    // No word converged (obstacles in the way of the words, or, for the transcriptions,
+    // terrain the words cross badly): a search seed, whose route follows the terrain within
+    // the limits.
     if (best.status != ocp::SolveStatus::kConverged && map != nullptr &&
-        options.search_time_s > 0.0 && (seeds.empty() || blocked > 0) && !over()) {
+        options.search_time_s > 0.0 && (seeds.empty() || blocked > 0 || transcription) && !over()) {
       const Clock::time_point t0 = Clock::now();
-      record(solveFromSearch(vehicle, problem, *map, options, left()), t0);
+      const std::string why = blocked > 0 && seeds.empty()
+                                  ? "every Dubins word crosses an impassable cell"
+                                  : "no Dubins word gave a verified trajectory";
+      record(solveFromSearch(vehicle, problem, *map, options, left(), why), t0);
     }
     if (best.attempts.empty()) {
       best.status = ocp::SolveStatus::kInfeasible;

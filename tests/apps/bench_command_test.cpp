@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -16,6 +17,7 @@
 
 #include "cli_run.hpp"
 #include "terratraj/apps/bench_command.hpp"
+#include "terratraj/apps/benchmark_suite.hpp"
 #include "terratraj/apps/cli.hpp"
 
 namespace terratraj::apps {
@@ -104,6 +106,9 @@ TEST_F(BenchCommandTest, ShardsMergeIntoTheWholeSuite) {
   const nlohmann::json m = read(path("m.json"));
   EXPECT_EQ(ids(m), ids(all));
   EXPECT_TRUE(m["missing_cases"].empty());
+  // The merged wall time is the parts' (never the merge's own run time).
+  EXPECT_NEAR(m["wall_time_s"].get<double>(),
+              s1["wall_time_s"].get<double>() + s2["wall_time_s"].get<double>(), 1e-9);
   EXPECT_EQ(m["summary"]["by_tables"]["data"]["runs"], all["summary"]["by_tables"]["data"]["runs"]);
   for (std::size_t i = 0; i + 1 < m["rows"].size(); ++i) {
     EXPECT_LT(m["rows"][i]["case"].get<int>(), m["rows"][i + 1]["case"].get<int>());
@@ -187,6 +192,33 @@ TEST_F(BenchCommandTest, BadInputIsNamedWithExitTwo) {
   const testing::CliRun r = run({"bench", "merge", path("not.json")});
   EXPECT_EQ(r.status, kExitBadInput);
   EXPECT_NE(r.err.find("not.json"), std::string::npos) << r.err;
+}
+
+// A figure that is not defined (no converged run) is "n/a", never 0.
+TEST(BenchFigures, AnUndefinedFigureIsNotApplicable) {
+  EXPECT_EQ(figureText(distributionJson({}), "median"), "n/a");
+  EXPECT_EQ(figureText(nlohmann::json(nullptr), "median"), "n/a");
+  EXPECT_EQ(figureText(distributionJson({2.0, 4.0}), "max"), "4");
+}
+
+// A stop request (SIGINT) before the first case: the result file is still written, with the
+// rows finished (none) and `stopped_by`.
+TEST_F(BenchCommandTest, AStoppedRunWritesWhatItHas) {
+  BenchOptions options;
+  options.suite = "tables";
+  options.settings.quick = true;
+  options.settings.seeds = 1;
+  options.out = path("stopped.json");
+  std::ostringstream out, err;
+  const std::atomic<bool> stop{true};
+  CommandContext context{out, err, false, nullptr};
+  context.log = spdlog::default_logger();
+  context.stop = &stop;
+  runBench(options, context);
+  const nlohmann::json result = read(path("stopped.json"));
+  EXPECT_EQ(result["stopped_by"], "interrupt");
+  EXPECT_TRUE(result["rows"].empty());
+  EXPECT_GT(result["cases_total"].get<int>(), 0);
 }
 
 }  // namespace

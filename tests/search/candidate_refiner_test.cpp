@@ -274,5 +274,71 @@ TEST(CandidateRefiner, AFailedSolveKeepsTheCandidateAndSaysWhy) {
   EXPECT_EQ(r.iterations, 2);  // the fine mesh only (the candidate is not wiggly)
 }
 
+// The exact minimum-time trajectory along the straight line from the world's start to its goal
+// (both at rest, heading east): full acceleration, cruise at v_max, full braking, at the limits.
+models::Trajectory bangBangLine(const PlanningProblem& p) {
+  const double a = p.limits.a_max, v_max = p.limits.v_max;
+  const double distance = (p.goal.position - p.start.position).norm();
+  const double v_peak = std::min(v_max, std::sqrt(a * distance));
+  const double t_ramp = v_peak / a;
+  const double t_cruise = (distance - v_peak * t_ramp) / v_peak;
+  const double total = 2.0 * t_ramp + t_cruise;
+  models::Trajectory t;
+  for (models::TrajectoryColumn c :
+       {models::TrajectoryColumn::kT, models::TrajectoryColumn::kX, models::TrajectoryColumn::kY,
+        models::TrajectoryColumn::kHeading, models::TrajectoryColumn::kV,
+        models::TrajectoryColumn::kOmega, models::TrajectoryColumn::kCurvature}) {
+    t.has_column[static_cast<std::size_t>(c)] = true;
+  }
+  const int steps = static_cast<int>(std::ceil(total / 0.02));
+  for (int k = 0; k <= steps; ++k) {
+    const double time = total * k / steps;
+    double s = 0.0, v = 0.0;
+    if (time < t_ramp) {
+      v = a * time;
+      s = 0.5 * a * time * time;
+    } else if (time < t_ramp + t_cruise) {
+      v = v_peak;
+      s = 0.5 * v_peak * t_ramp + v_peak * (time - t_ramp);
+    } else {
+      const double left = std::max(total - time, 0.0);
+      v = a * left;
+      s = distance - 0.5 * a * left * left;
+    }
+    models::TrajectorySample sample = models::TrajectorySample::unknown();
+    sample.t = time;
+    sample.x = p.start.position.x() + s;
+    sample.y = p.start.position.y();
+    sample.heading = 0.0;
+    sample.v = v;
+    sample.omega = 0.0;
+    sample.curvature = 0.0;
+    t.samples.push_back(sample);
+  }
+  return t;
+}
+
+// A refinement that ends worse than its feasible candidate is not `converged`: the candidate is
+// returned, and the reason says so. The candidate here is already the exact optimum (at the
+// limits), the refinement solves within its margins: a little slower, and worse_tolerance 0
+// counts any loss.
+TEST(CandidateRefiner, ARefinementWorseThanItsFeasibleCandidateReturnsTheCandidate) {
+  auto world = testing::makeWorld(terrain::TerrainKind::kFlat, 96, 1);
+  ASSERT_NEAR(world->problem.start.position.y(), world->problem.goal.position.y(), 1e-12);
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  RefinementOptions options;
+  options.method = RefineMethod::kCollocation;
+  options.worse_tolerance = 0.0;
+  const CandidateRefiner refiner(world->problem, bvp, framesOf(*world), options);
+  const RefinementResult r = refiner.refine(bangBangLine(world->problem));
+  ASSERT_TRUE(r.candidate_figures.has_value());
+  EXPECT_TRUE(r.candidate_figures->check.ok()) << r.candidate_figures->check.summary();
+  ASSERT_TRUE(r.refined_figures.has_value()) << r.reason;
+  EXPECT_GT(r.refined_figures->cost, r.candidate_figures->cost);
+  EXPECT_TRUE(r.returned_candidate) << r.reason;
+  EXPECT_EQ(r.status, ocp::SolveStatus::kDiverged);
+  EXPECT_THAT(r.reason, HasSubstr("the candidate is returned"));
+}
+
 }  // namespace
 }  // namespace terratraj::search

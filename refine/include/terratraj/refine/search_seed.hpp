@@ -1,8 +1,10 @@
 #pragma once
-// The search seed of solveSeeded(): when obstacles stand in the way of every Dubins word, the
-// kinodynamic PRM's first solution, refined in its homotopy class (search::CandidateRefiner).
+// The search seed of solveSeeded(): when no Dubins word gave a verified trajectory (obstacles in
+// the way of every word, or terrain they cross badly), the kinodynamic PRM's first solution,
+// refined in its homotopy class (search::CandidateRefiner).
 
 #include <optional>
+#include <string>
 
 #include "terratraj/refine/seeded_solver.hpp"
 
@@ -11,10 +13,11 @@ namespace terratraj::refine {
 /// Plans with the PRM for options.search_time_s at most (stopping at its first solution; the
 /// seed options.search_seed), then refines that candidate with the method of `options` (auto:
 /// collocation) within `time_left_s`. The result's status is the refinement's (the verdict
-/// against the exact goal); kInfeasible with the reason when the PRM finds nothing.
+/// against the exact goal); kInfeasible with the reason when the PRM finds nothing (`why`: why
+/// a search was needed, the start of that reason).
 SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
                                const ocp::BoundaryValueProblem& problem,
                                const terrain::ElevationMap& map, const SeededSolveOptions& options,
-                               std::optional<double> time_left_s);
+                               std::optional<double> time_left_s, const std::string& why);
 
 }  // namespace terratraj::refine
