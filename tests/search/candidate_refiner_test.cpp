@@ -329,7 +329,8 @@ TEST(CandidateRefiner, ARefinementWorseThanItsFeasibleCandidateReturnsTheCandida
   RefinementOptions options;
   options.method = RefineMethod::kCollocation;
   options.worse_tolerance = 0.0;
-  const CandidateRefiner refiner(world->problem, bvp, framesOf(*world), options);
+  const ReferenceFrames frames = framesOf(*world);  // the refiner keeps a reference
+  const CandidateRefiner refiner(world->problem, bvp, frames, options);
   const RefinementResult r = refiner.refine(bangBangLine(world->problem));
   ASSERT_TRUE(r.candidate_figures.has_value());
   EXPECT_TRUE(r.candidate_figures->check.ok()) << r.candidate_figures->check.summary();
