@@ -123,9 +123,9 @@ TEST(TaeaslPlanner, ForestGivesSeveralCheckedClasses) {
   EXPECT_EQ(names.size(), result.solutions.size());
 }
 
-// A search that cannot finish in the limit (a thousand classes wanted on a forest) stops on time;
-// then it still builds the trajectory of every class found (tens of them), which the slack
-// allows for on a loaded two-core machine.
+// A search that cannot finish in the limit (a thousand classes wanted on a forest) stops on time:
+// the search takes 85 % of the limit once a class is found, the rest builds the trajectory of
+// every class found (tens of them); the slack allows for a loaded two-core machine.
 TEST(TaeaslPlanner, TimeLimitIsHonoured) {
   auto world = testing::makeWorld(terrain::TerrainKind::kForest, 256);
   const LatticeGraph graph(world->problem, defaultPrimitives());
@@ -134,7 +134,7 @@ TEST(TaeaslPlanner, TimeLimitIsHonoured) {
   const TaeaslPlanner planner(graph, options);
   const double limit_s = 0.3;
   const PlanResult result = planner.solve(TerminationCondition::timeLimit(limit_s));
-  EXPECT_GE(result.planning_time_ms, limit_s * 1e3);
+  EXPECT_GE(result.planning_time_ms, 0.8 * limit_s * 1e3);
   EXPECT_LE(result.planning_time_ms, 1.2 * limit_s * 1e3 + 20.0);
 }
 
