@@ -692,7 +692,7 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
       {"method", "intervals", "max_iterations", "tolerance", "time_limit_s", "yaw_rate_order",
        "speed_order", "scheme", "shooting_controls", "hessian", "control_effort",
        "mesh_refinement_rounds", "mesh_refinement_tolerance", "min_clearance_m", "max_intervals",
-       "initial_guess", "transcription_max_iterations"});
+       "initial_guess", "transcription_max_iterations", "ipopt_max_iterations"});
   SolverSpec solver;
   if (const std::optional<Field> method = map.find("method")) {
     solver.method = readEnum<SolverMethod>(ctx, *method, parseSolverMethod, solverMethodNames());
@@ -716,6 +716,11 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
     int iterations = 1;
     map.readIntInto("transcription_max_iterations", kMinIterations, kMaxIterations, iterations);
     solver.transcription_max_iterations = iterations;
+  }
+  if (map.find("ipopt_max_iterations")) {
+    int iterations = 1;
+    map.readIntInto("ipopt_max_iterations", kMinIterations, kMaxIterations, iterations);
+    solver.ipopt_max_iterations = iterations;
   }
   map.readIntInto("yaw_rate_order", 1, 8, solver.yaw_rate_order);
   map.readIntInto("speed_order", 1, 8, solver.speed_order);

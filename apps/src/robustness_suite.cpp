@@ -16,6 +16,7 @@
 
 #include "terratraj/apps/benchmark_suite.hpp"
 #include "terratraj/apps/json_number.hpp"
+#include "terratraj/apps/solve_command.hpp"
 #include "terratraj/apps/vehicle_factory.hpp"
 #include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/ocp/dubins_path.hpp"
@@ -164,7 +165,7 @@ nlohmann::json robustRow(const RobustSetData& data, int index, const std::string
   row["reason"] = s.reason;
   row["method_used"] = s.method;
   row["initial_guess"] = s.initial_guess;
-  row["attempts"] = s.attempts.size();
+  row["attempts"] = attemptsJson(s.attempts);
   row["iterations"] = s.iterations;
   row["time_ms"] = s.total_time_ms;
   row["cost"] = s.verified.ok ? jsonNumber(s.verified.cost) : nlohmann::json(nullptr);

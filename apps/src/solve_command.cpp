@@ -304,25 +304,13 @@ refine::SeededSolveOptions seededOptions(const ProblemSpec& problem, const Solve
                                                             *problem.solver.min_clearance_m};
     }
   }
+  seeded.ipopt_max_iterations = problem.solver.ipopt_max_iterations;
   seeded.search_seed = problem.planner.seed;
   seeded.time_limit_s = problem.solver.time_limit_s;
   seeded.stop = context.stop;
   (void)map;
   (void)options;
   return seeded;
-}
-
-nlohmann::json attemptsJson(const std::vector<refine::SeedAttempt>& attempts) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (const refine::SeedAttempt& a : attempts) {
-    rows.push_back({{"seed", a.seed},
-                    {"method", a.method},
-                    {"status", ocp::solveStatusName(a.status)},
-                    {"reason", a.reason},
-                    {"cost", jsonNumber(a.cost)},
-                    {"time_ms", a.time_ms}});
-  }
-  return rows;
 }
 
 // The report of a seeded solve: the contract's keys, the verdict, the attempts, and the
@@ -337,7 +325,9 @@ nlohmann::json seededReportJson(const refine::SeededSolution& solution,
       {"requested_method", solverMethodName(problem.solver.method)},
       {"initial_guess", solution.initial_guess},
       {"iterations", solution.iterations},
-      {"max_iterations", seeded.parametric.max_iterations},
+      {"max_iterations", seeded.method == refine::CoreMethod::kIpopt
+                             ? refine::ipoptMaxIterations(seeded)
+                             : seeded.parametric.max_iterations},
       {"time_limit_s",
        seeded.time_limit_s ? nlohmann::json(*seeded.time_limit_s) : nlohmann::json(nullptr)},
       {"solve_time_ms", solution.total_time_ms},
@@ -353,6 +343,11 @@ nlohmann::json seededReportJson(const refine::SeededSolution& solution,
     json["solver_time_ms"] = s.solve_time_ms;
     json["integrations"] = s.integrations + solution.parametric->initial_guess.integrations;
     json["controls"] = std::vector<double>(s.q.data(), s.q.data() + s.q.size());
+    if (solution.parametric->path_points > 0) {
+      // ipopt: the path points of the last solve, and their cap.
+      json["path_points"] = solution.parametric->path_points;
+      json["max_path_points"] = seeded.parametric.max_path_points;
+    }
   }
   if (solution.transcription) {
     const ocp::VerifiedTranscription& t = *solution.transcription;
@@ -390,6 +385,19 @@ nlohmann::json seededReportJson(const refine::SeededSolution& solution,
 }
 
 }  // namespace
+
+nlohmann::json attemptsJson(const std::vector<refine::SeedAttempt>& attempts) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const refine::SeedAttempt& a : attempts) {
+    rows.push_back({{"seed", a.seed},
+                    {"method", a.method},
+                    {"status", ocp::solveStatusName(a.status)},
+                    {"reason", a.reason},
+                    {"cost", jsonNumber(a.cost)},
+                    {"time_ms", a.time_ms}});
+  }
+  return rows;
+}
 
 int runSolve(const SolveOptions& options, CommandContext& context) {
   ProblemSpec problem = loadProblem(options.problem);

@@ -1,7 +1,9 @@
 #include "terratraj/ocp/boundary_value_solver.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 #include "terratraj/ocp/ceres_solver.hpp"
 #include "terratraj/ocp/ipopt_solver.hpp"
@@ -51,6 +53,10 @@ SolveResult runSolver(const models::TerrainFollowingModel& vehicle,
       ipopt.max_iterations = options.max_iterations;
       ipopt.time_limit_s = options.time_limit_s;
       ipopt.path_points = options.path_points;
+      if (options.max_final_time_ratio > 0.0) {
+        ipopt.max_final_time_s =
+            options.max_final_time_ratio * std::max(guess.q(model.finalTimeIndex()), 1e-2);
+      }
       return solveIpopt(model, &constraints, guess.q, ipopt);
     }
     case BoundaryValueMethod::kCeres: {
@@ -133,17 +139,47 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
   BoundaryValueOptions solver_options = options;
   solver_options.criteria.position_m *= 0.5;
   solver_options.criteria.heading_rad *= 0.5;
+  solution.path_points = options.method == BoundaryValueMethod::kIpopt ? options.path_points : 0;
   solution.solver = runSolver(vehicle, problem, solver_options, solution.initial_guess);
   if (solution.solver.q.size() == 0) solution.solver.q = solution.initial_guess.q;
-  solution.total_time_ms = elapsed_ms();
-  timed = true;
-  solution.verified =
-      verifyParametricSolution(vehicle, problem, solution.solver.q, map, options.verification);
-  if (solution.verified.ok) {
-    solution.verdict = models::judgeTrajectory(
-        solution.verified.trajectory, solveRequirements(vehicle, problem, options.criteria, map));
+  double verification_ms = 0.0;
+  const auto verify = [&] {
+    const double before = elapsed_ms();
+    solution.verified =
+        verifyParametricSolution(vehicle, problem, solution.solver.q, map, options.verification);
+    if (solution.verified.ok) {
+      solution.verdict = models::judgeTrajectory(
+          solution.verified.trajectory, solveRequirements(vehicle, problem, options.criteria, map));
+    }
+    verification_ms += elapsed_ms() - before;
+  };
+  verify();
+  // ipopt holds the limits at path points only: a limit broken between them is held at twice
+  // as many points, from the solution found, up to max_path_points.
+  while (options.method == BoundaryValueMethod::kIpopt &&
+         solution.solver.status == SolveStatus::kConverged && solution.verified.ok &&
+         solution.verdict.failure == models::VerdictFailure::kBreaksLimits &&
+         solution.path_points < options.max_path_points) {
+    if (options.time_limit_s && elapsed_ms() >= 1e3 * *options.time_limit_s) break;
+    solution.path_points = std::min(2 * solution.path_points - 1, options.max_path_points);
+    solver_options.path_points = solution.path_points;
+    if (options.time_limit_s) {
+      solver_options.time_limit_s = std::max(0.0, *options.time_limit_s - 1e-3 * elapsed_ms());
+    }
+    InitialGuess from_solution = solution.initial_guess;
+    from_solution.q = solution.solver.q;
+    const int iterations = solution.solver.iterations;
+    std::vector<IterationRecord> history = std::move(solution.solver.history);
+    solution.solver = runSolver(vehicle, problem, solver_options, from_solution);
+    if (solution.solver.q.size() == 0) solution.solver.q = from_solution.q;
+    solution.solver.iterations += iterations;
+    history.insert(history.end(), solution.solver.history.begin(), solution.solver.history.end());
+    solution.solver.history = std::move(history);
+    verify();
   }
-  solution.verification_time_ms = elapsed_ms() - solution.total_time_ms;
+  solution.total_time_ms = elapsed_ms() - verification_ms;
+  timed = true;
+  solution.verification_time_ms = verification_ms;
   if (solution.solver.status != SolveStatus::kConverged) {
     return finish(solution.solver.status, solution.solver.reason);
   }

@@ -27,6 +27,12 @@ using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eig
 constexpr double kMinFinalTime = 1e-3;     // lower bound of t_f [s]
 constexpr double kIpoptInfinity = 1e19;    // Ipopt's default nlp_{lower,upper}_bound_inf
 constexpr std::size_t kRecentPoints = 32;  // evaluated points kept for the history records
+// Speeds at or below this are rest [m/s] (an end at rest gets the curvature rows of its limit).
+constexpr double kRestSpeed = 1e-9;
+// The rest ends' curvature rows aim this far inside kappa_max: the check reads the curvature at
+// rest from the first moving sample, where the second-order terms of omega / v add to
+// omega' / v'.
+constexpr double kRestCurvatureMargin = 0.98;
 
 // A point Ipopt asked about, for the per-iteration history.
 struct RecentPoint {
@@ -60,8 +66,18 @@ class TrajectoryNlp final : public Ipopt::TNLP {
       }
       // The last point at exactly t_f.
       tau_.back() = 1.0;
+      // At an end at rest the curvature rows (|omega| <= kappa_max v) only hold omega at 0; the
+      // curvature there is the limit omega' / v', held by two rows per rest end.
+      const BoundaryValueProblem& problem = model.problem();
+      const double kappa = problem.limits.kappa_max;
+      if (std::isfinite(kappa) && kappa > 0.0) {
+        rest_kappa_ = kRestCurvatureMargin * kappa;
+        rest_start_ = std::abs(problem.start.v) <= kRestSpeed;
+        rest_goal_ = std::abs(problem.goal.v) <= kRestSpeed;
+      }
     }
-    m_ = 3 + rows_per_point_ * static_cast<int>(tau_.size());
+    path_rows_ = rows_per_point_ * static_cast<int>(tau_.size());
+    m_ = 3 + path_rows_ + 2 * (static_cast<int>(rest_start_) + static_cast<int>(rest_goal_));
     values_.resize(m_);
     jacobian_.resize(m_, n_);
   }
@@ -92,6 +108,9 @@ class TrajectoryNlp final : public Ipopt::TNLP {
       constraints_->evaluate(path_.points[i], values_.data() + row, &point_jacobian_);
       jacobian_.middleRows(row, rows_per_point_) = point_jacobian_ * path_.derivatives[i];
     }
+    Eigen::Index rest_row = 3 + path_rows_;
+    if (rest_start_) addRestRows(0, +1.0, rest_row);
+    if (rest_goal_) addRestRows(tau_.size() - 1, -1.0, rest_row);
     if (!std::isfinite(eval_.cost) || !eval_.gradient.allFinite() || !values_.allFinite() ||
         !jacobian_.allFinite()) {
       message_ = "non-finite cost, constraints or derivatives";
@@ -108,6 +127,8 @@ class TrajectoryNlp final : public Ipopt::TNLP {
   const Eigen::VectorXd& constraintValues() const { return values_; }
   int constraintCount() const { return m_; }
   int rowsPerPoint() const { return rows_per_point_; }
+  int pathRows() const { return path_rows_; }
+  bool restStart() const { return rest_start_; }
   bool finalized() const { return finalized_; }
   const Eigen::VectorXd& finalX() const { return final_x_; }
   const Eigen::VectorXd& finalLambda() const { return final_lambda_; }
@@ -131,6 +152,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
       x_u[k] = kIpoptInfinity;
     }
     x_l[model_.finalTimeIndex()] = kMinFinalTime;
+    if (options_.max_final_time_s) x_u[model_.finalTimeIndex()] = *options_.max_final_time_s;
     for (Ipopt::Index i = 0; i < m; ++i) {
       g_l[i] = i < 3 ? 0.0 : -kIpoptInfinity;
       g_u[i] = 0.0;
@@ -234,6 +256,19 @@ class TrajectoryNlp final : public Ipopt::TNLP {
   }
 
  private:
+  // The rows +-omega' - direction kappa v' <= 0 at path point `point` (an end at rest; direction
+  // +1 at the start, where v' >= 0, -1 at the goal), from row `row` on (advanced by 2).
+  void addRestRows(std::size_t point, double direction, Eigen::Index& row) {
+    constexpr int kVDot = 5, kOmegaDot = 6;  // PathPoint variables (path_constraints.hpp)
+    const PathPoint& p = path_.points[point];
+    const auto& d = path_.derivatives[point];
+    for (const double sign : {1.0, -1.0}) {
+      values_(row) = sign * p.omega_dot - direction * rest_kappa_ * p.v_dot;
+      jacobian_.row(row) = sign * d.row(kOmegaDot) - direction * rest_kappa_ * d.row(kVDot);
+      ++row;
+    }
+  }
+
   template <typename Body>
   static bool guarded(Body body) {
     try {
@@ -275,8 +310,11 @@ class TrajectoryNlp final : public Ipopt::TNLP {
   std::vector<IterationRecord>& history_;
   int n_;
   int rows_per_point_;
+  int path_rows_ = 0;  // rows_per_point_ per path point
   int m_ = 3;
   std::vector<double> tau_;
+  bool rest_start_ = false, rest_goal_ = false;  // ends at rest: their curvature rows
+  double rest_kappa_ = 0.0;                      // [1/m]
 
   // The cached evaluation.
   bool has_cache_ = false;
@@ -315,6 +353,9 @@ std::string worstConstraint(const TrajectoryNlp& nlp, const PathConstraints* con
   if (amount <= 0.0) return "no constraint violated at the final point";
   if (worst < 3) {
     text << kTerminal[worst];
+  } else if (worst >= 3 + nlp.pathRows()) {
+    const bool at_start = nlp.restStart() && worst < 3 + nlp.pathRows() + 2;
+    text << "kappa_max at the " << (at_start ? "start" : "goal") << " (at rest: omega' / v')";
   } else {
     const int row = (worst - 3) % nlp.rowsPerPoint();
     const int point = (worst - 3) / nlp.rowsPerPoint();
@@ -338,6 +379,10 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
     return finish(SolveStatus::kError, "path_points must be >= 2");
   }
   if (options.max_iterations < 0) return finish(SolveStatus::kError, "max_iterations < 0");
+  if (options.max_final_time_s && !(*options.max_final_time_s > kMinFinalTime &&
+                                    *options.max_final_time_s >= q0(model.finalTimeIndex()))) {
+    return finish(SolveStatus::kError, "max_final_time_s must be above 1e-3 s and the guess's t_f");
+  }
   if (options.time_limit_s && !(*options.time_limit_s >= 0.0)) {
     return finish(SolveStatus::kError, "time_limit_s must be >= 0");
   }

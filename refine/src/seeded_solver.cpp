@@ -126,6 +126,10 @@ ocp::TranscriptionSolveOptions defaultCoreTranscription() {
   return options;
 }
 
+int ipoptMaxIterations(const SeededSolveOptions& options) {
+  return options.ipopt_max_iterations.value_or(3 * options.parametric.max_iterations);
+}
+
 const char* coreMethodName(CoreMethod method) {
   switch (method) {
     case CoreMethod::kAuto:
@@ -194,6 +198,7 @@ SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
   }
   ocp::BoundaryValueOptions settings = options.parametric;
   settings.method = parametricMethod(options.method);
+  if (options.method == CoreMethod::kIpopt) settings.max_iterations = ipoptMaxIterations(options);
   if (time_left_s) settings.time_limit_s = *time_left_s;
   if (seed != nullptr) {
     std::vector<double> t, v, omega;
@@ -231,9 +236,12 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
            (options.time_limit_s && secondsSince(started) >= *options.time_limit_s);
   };
   SeededSolution best;
+  bool any_candidate = false;
   best.method = coreMethodName(options.method);
   best.reason = "no attempt was made";
-  const auto record = [&](SeededSolution result, const Clock::time_point attempt_started) {
+  // `candidate` false: listed among the attempts, never the result (a bridge's first step).
+  const auto record = [&](SeededSolution result, const Clock::time_point attempt_started,
+                          bool candidate = true) {
     SeedAttempt a;
     a.seed = result.initial_guess;
     a.method = result.method;
@@ -242,11 +250,31 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
     a.cost = result.verified.ok ? result.verified.cost : std::numeric_limits<double>::quiet_NaN();
     a.time_ms = 1e3 * secondsSince(attempt_started);
     const int iterations = best.iterations + result.iterations;
+    const bool first_candidate = !any_candidate;
+    any_candidate = any_candidate || candidate;
     std::vector<SeedAttempt> attempts = std::move(best.attempts);
     attempts.push_back(a);
-    if (attempts.size() == 1 || better(result, best)) best = std::move(result);
+    if (candidate && (first_candidate || better(result, best))) best = std::move(result);
     best.attempts = std::move(attempts);
     best.iterations = iterations;
+  };
+  // auto, when collocation fails from a word: the parametric ipopt (few unknowns, free speed,
+  // the limits held) from the same word, and collocation again from its trajectory, which
+  // follows the terrain within the limits (the result stays collocation's: it holds every
+  // constraint of the vehicle, the Segway's look-ups included).
+  const auto bridgeThroughIpopt = [&](const Seed& seed) {
+    SeededSolveOptions parametric = options;
+    parametric.method = CoreMethod::kIpopt;
+    const Clock::time_point t0 = Clock::now();
+    SeededSolution step = attempt(vehicle, problem, map, parametric, &seed, left());
+    std::optional<ocp::TranscriptionGuess> guess;
+    if (step.verified.ok) guess = ocp::guessFromTrajectory(step.verified.trajectory);
+    const double length = step.verified.length;
+    record(std::move(step), t0, false);
+    if (!guess || over()) return;
+    const Seed bridged{"ipopt from " + seed.name, length, std::move(*guess), seed.turning};
+    const Clock::time_point t1 = Clock::now();
+    record(attempt(vehicle, problem, map, options, &bridged, left()), t1);
   };
   const bool transcription = isTranscription(options.method);
   if (options.initial_guess == InitialGuessKind::kFlat ||
@@ -280,6 +308,10 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
       }
       const Clock::time_point t0 = Clock::now();
       record(attempt(vehicle, problem, map, options, &seed, left()), t0);
+      if (options.method == CoreMethod::kAuto && best.status != ocp::SolveStatus::kConverged &&
+          !over()) {
+        bridgeThroughIpopt(seed);
+      }
     }
     // No word converged (obstacles in the way of the words, or, for the transcriptions,
     // terrain the words cross badly): a search seed, whose route follows the terrain within

@@ -111,6 +111,18 @@ TEST_F(SeededSolverTest, ParametricIpoptSolvesRestToRest) {
   ASSERT_TRUE(s.parametric.has_value());
 }
 
+// Rest-to-rest turn-backs by the parametric ipopt: at an end at rest the curvature is
+// omega' / v', held by its own rows; a limit broken between path points is solved again with
+// more points. Every row of the written trajectory holds the limits (checked here).
+TEST_F(SeededSolverTest, ParametricIpoptHoldsTheCurvatureOfTurnBacksAtRest) {
+  for (const ocp::BoundaryValueProblem& problem : sets::turnBacks(2, 11)) {
+    const SeededSolution s = solve(problem, CoreMethod::kIpopt);
+    ASSERT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
+    ASSERT_TRUE(s.parametric.has_value());
+    expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);
+  }
+}
+
 // A U-turn where it stands (same position, heading + 180 deg, rest to rest): a valid problem,
 // solved by a loop within the curvature limit.
 TEST_F(SeededSolverTest, UTurnAtTheSamePositionIsSolved) {

@@ -205,6 +205,9 @@ struct SolverSpec {
   /// Ipopt iterations of a shooting / collocation solve, >= 1; absent: 5 x max_iterations
   /// (an interior-point transcription takes more, cheaper iterations).
   std::optional<int> transcription_max_iterations;
+  /// Iterations of the parametric ipopt, >= 1; absent: 3 x max_iterations (its limited-memory
+  /// quasi-Newton iterations are more, and cheaper, than newton's).
+  std::optional<int> ipopt_max_iterations;
   double tolerance_position_m = 0.001;         ///< terminal position error [m], > 0
   double tolerance_heading_rad = 0.001;        ///< terminal heading error [rad], > 0
   double tolerance_lagrangian_gradient = 0.1;  ///< |dJ/dq + lambda' dc/dq|_inf, > 0

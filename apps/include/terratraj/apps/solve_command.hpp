@@ -14,6 +14,7 @@
 #include "terratraj/ocp/boundary_value_solver.hpp"
 #include "terratraj/ocp/direct_transcription.hpp"
 #include "terratraj/ocp/trajectory_verifier.hpp"
+#include "terratraj/refine/seeded_solver.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
 
 namespace terratraj::apps {
@@ -56,6 +57,10 @@ nlohmann::json iterationHistoryJson(const std::vector<ocp::IterationRecord>& his
 /// length_m, terminal_error, max_abs_pitch_rad, max_abs_roll_rad, max_speed,
 /// constraint_violation, violated_limit, slope_dwell_rad2_s, verified (null where it failed).
 nlohmann::json verifiedTrajectoryJson(const ocp::VerifiedTrajectory& verified);
+
+/// The report's `attempts`: per seed tried, seed, method, status, reason, verified cost (null
+/// without a re-simulation), time_ms.
+nlohmann::json attemptsJson(const std::vector<refine::SeedAttempt>& attempts);
 
 /// The contract's solve report for a solution.
 nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,

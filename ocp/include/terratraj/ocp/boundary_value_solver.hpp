@@ -43,7 +43,13 @@ struct BoundaryValueOptions {
     return options;
   }();
   double newton_fd_step = 0.01;  ///< RK4 step of newton_fd [s]
-  int path_points = 41;          ///< ipopt: points where path constraints are imposed
+  int path_points = 41;          ///< ipopt: points where path constraints are imposed, >= 2
+  /// ipopt: when the check finds a limit broken between path points, the solve is repeated
+  /// from its solution with twice as many points (2 n - 1), up to this many, >= path_points.
+  int max_path_points = 321;
+  /// ipopt: t_f at most this times the initial guess's t_f (0: unbounded), >= 1 or 0. A local
+  /// solve has no use for a final time far beyond its seed's.
+  double max_final_time_ratio = 5.0;
   VerificationOptions verification;
   /// Where the flat-ground initial guess starts (problem's ParametricControls layout, e.g.
   /// ocp::fitParametricControls of a global seed); empty: 004's heuristic.
@@ -60,6 +66,7 @@ struct BoundaryValueSolution {
   models::TrajectoryVerdict verdict;  ///< the independent check of verified.trajectory
   double total_time_ms = 0.0;         ///< initial guess + solver [ms]
   double verification_time_ms = 0.0;  ///< the re-simulation [ms]
+  int path_points = 0;  ///< ipopt: path points of the last solve (0 for the other methods)
 };
 
 /// Solves `problem` on `vehicle`; `map` (optional: no map rules without it) supplies the

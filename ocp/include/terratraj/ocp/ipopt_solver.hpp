@@ -4,7 +4,7 @@
 //   min_q  J(q)
 //   s.t.   c(q) = 0                               (terminal x, y, heading; 3 rows)
 //          g(p(tau_i; q)) <= 0, i = 0..N-1        (PathConstraints rows at tau_i = i / (N - 1))
-//          t_f >= 1e-3 s
+//          1e-3 s <= t_f <= max_final_time_s
 // with exact first derivatives from the model's forward sensitivities. Each new q costs one
 // integration with sensitivities (evaluateWithPath when path constraints are imposed, else
 // evaluate); Ipopt's repeated calls at the same q are served from a cache.
@@ -29,8 +29,12 @@ struct IpoptOptions {
   ConvergenceCriteria criteria;
   int max_iterations = 100;  ///< Ipopt's max_iter, >= 0
   std::optional<double>
-      time_limit_s;              ///< wall clock [s] (also Ipopt's max_cpu_time); absent = none
-  int path_points = 41;          ///< points tau_i where path constraints hold, >= 2
+      time_limit_s;      ///< wall clock [s] (also Ipopt's max_cpu_time); absent = none
+  int path_points = 41;  ///< points tau_i where path constraints hold, >= 2
+  /// Upper bound of t_f [s] (absent: none). A local solve from a seed has no use for a final
+  /// time far beyond the seed's; without a bound the free-speed polynomials can wander to
+  /// hundreds of seconds, where each integration is slow.
+  std::optional<double> max_final_time_s;
   bool path_constraints = true;  ///< false: terminal equalities only
   int print_level = 0;           ///< Ipopt's print_level, 0 (silent) to 12
 };

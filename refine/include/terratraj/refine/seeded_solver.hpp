@@ -11,8 +11,10 @@
 //
 // Solvers: shooting / collocation start from a seed's trajectory; the parametric methods
 // (newton, newton_fd, ipopt, ceres) from the polynomial controls fitted to it, through the
-// flat-ground optimum. `auto` uses collocation. Every attempt is verified (the verdict); the best
-// converged cost wins; a second word is tried when the first fails or is within
+// flat-ground optimum. `auto` uses collocation; when collocation fails from a word, the
+// parametric ipopt from the same word and collocation again from ipopt's trajectory (the ipopt
+// step is listed among the attempts, never the result). Every attempt is verified (the verdict);
+// the best converged cost wins; a second word is tried when the first fails or is within
 // `retry_length_ratio` of it.
 
 #include <atomic>
@@ -69,6 +71,9 @@ struct SeededSolveOptions {
   /// newton and ceres hold no limit and keep the problem's order (a free speed would be
   /// unbounded for them).
   int ipopt_speed_order = 3;
+  /// ipopt's iterations, >= 1; absent: 3 x parametric.max_iterations (limited-memory
+  /// quasi-Newton iterations: more, and cheaper, than newton's).
+  std::optional<int> ipopt_max_iterations;
   double seed_spacing_m = 0.1;  ///< samples of a seed path [m], > 0
   /// Search seed: the PRM's budget [s] when every word crosses an impassable cell (0: none).
   double search_time_s = 1.0;
@@ -76,6 +81,9 @@ struct SeededSolveOptions {
   std::optional<double> time_limit_s;       ///< wall clock of the whole solve [s]; absent: none
   const std::atomic<bool>* stop = nullptr;  ///< set from outside (SIGINT): no further attempt
 };
+
+/// The iterations of the parametric ipopt under `options`.
+int ipoptMaxIterations(const SeededSolveOptions& options);
 
 /// One attempt: a seed and a solver.
 struct SeedAttempt {
