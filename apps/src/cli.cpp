@@ -8,11 +8,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <new>
 #include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -161,79 +164,99 @@ void addGeneratorOptions(CLI::App& command, terrain::GeneratorOptions& generator
       ->check(kCount);
 }
 
-}  // namespace
+// One command of the tool: its parsed options live in `run`'s closure; `run` is called when
+// the command was given.
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int(CommandContext&)> run;
+};
 
-int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
-           const std::atomic<bool>* stop) {
-  CommandContext context{out, err, wantsJson(argc, argv), makeLogger(err), stop};
+// Each add*() declares one command (its options and help) under `parent`; every --json sets
+// `json_flag` (wantsJson() has already seen it).
 
-  CLI::App app{"terratraj: optimal trajectories for ground rovers on terrain.", "terratraj"};
-  app.set_version_flag("--version", kVersion);
-  app.require_subcommand(1);
-  bool json_flag = false;  // each command's --json sets this; wantsJson() already saw it
-
-  DemoOptions demo;
-  CLI::App* demo_command = app.add_subcommand(
+Command addDemo(CLI::App& parent, bool& json_flag) {
+  auto demo = std::make_shared<DemoOptions>();
+  CLI::App* command = parent.add_subcommand(
       "demo",
       "The main job on built-in defaults, no input files: generates a forest, plans with TAEASL "
       "(one route per homotopy class), refines every route, and writes the terrain, the "
       "trajectories, report.json and the plots to the output folder.");
-  demo_command->add_option("--out-dir", demo.out_dir, "output folder")->capture_default_str();
-  addGeneratorOptions(*demo_command, demo.generator);
-  demo_command->add_flag("!--no-plot", demo.plot, "skip the PNG figures");
-  demo_command->add_flag("--json", json_flag, "print the report as one JSON object");
+  command->add_option("--out-dir", demo->out_dir, "output folder")->capture_default_str();
+  addGeneratorOptions(*command, demo->generator);
+  command->add_flag("!--no-plot", demo->plot, "skip the PNG figures");
+  command->add_flag("--json", json_flag, "print the report as one JSON object");
+  return {command, [demo](CommandContext& context) { return runDemo(*demo, context); }};
+}
 
-  CLI::App* terrain_command = app.add_subcommand("terrain", "Inspect or make terrain.");
+std::vector<Command> addTerrain(CLI::App& parent, bool& json_flag) {
+  CLI::App* terrain_command = parent.add_subcommand("terrain", "Inspect or make terrain.");
   terrain_command->require_subcommand(1);
 
-  TerrainInfoOptions info;
+  auto info = std::make_shared<TerrainInfoOptions>();
   CLI::App* info_command = terrain_command->add_subcommand(
       "info", "Size, cell, extent, height range, no-data count and slope statistics of a raster.");
-  info_command->add_option("FILE", info.file, "any raster GDAL reads")->required();
-  info_command->add_option("--cell", info.cell, "cell size [m] for rasters without georeferencing");
-  info_command->add_option("--z-scale", info.z_scale, "multiplies heights")->capture_default_str();
+  info_command->add_option("FILE", info->file, "any raster GDAL reads")->required();
+  info_command->add_option("--cell", info->cell,
+                           "cell size [m] for rasters without georeferencing");
+  info_command->add_option("--z-scale", info->z_scale, "multiplies heights")->capture_default_str();
   info_command->add_flag("--json", json_flag, "print one JSON object");
 
-  TerrainGenerateOptions generate;
-  std::string kind_name;
+  struct Generate {
+    TerrainGenerateOptions options;
+    std::string kind_name;
+  };
+  auto generate = std::make_shared<Generate>();
   CLI::App* generate_command =
       terrain_command->add_subcommand("generate", "Generate a synthetic terrain as GeoTIFF.");
-  generate_command->add_option("KIND", kind_name, "terrain kind (listed below)")
+  generate_command->add_option("KIND", generate->kind_name, "terrain kind (listed below)")
       ->required()
       ->check(CLI::IsMember(terrain::terrainKindNames()));
-  generate_command->add_option("--out", generate.out, "output GeoTIFF")->required();
-  addGeneratorOptions(*generate_command, generate.generator);
+  generate_command->add_option("--out", generate->options.out, "output GeoTIFF")->required();
+  addGeneratorOptions(*generate_command, generate->options.generator);
   generate_command->add_flag("--json", json_flag, "print one JSON object");
   generate_command->footer(kindsHelp());
+  return {
+      {info_command, [info](CommandContext& context) { return runTerrainInfo(*info, context); }},
+      {generate_command, [generate](CommandContext& context) {
+         generate->options.generator.kind = *terrain::parseTerrainKind(generate->kind_name);
+         return runTerrainGenerate(generate->options, context);
+       }}};
+}
 
-  CheckOptions check;
-  CLI::App* check_command = app.add_subcommand(
+Command addCheck(CLI::App& parent, bool& json_flag) {
+  auto check = std::make_shared<CheckOptions>();
+  CLI::App* command = parent.add_subcommand(
       "check",
       "Read a problem file and its terrain, validate every key and the start and goal "
       "poses, and print what was understood.");
-  check_command->add_option("PROBLEM", check.problem, "problem YAML")->required();
-  check_command->add_flag("--json", json_flag, "print one JSON object");
+  command->add_option("PROBLEM", check->problem, "problem YAML")->required();
+  command->add_flag("--json", json_flag, "print one JSON object");
+  return {command, [check](CommandContext& context) { return runCheck(*check, context); }};
+}
 
-  SolveOptions solve;
-  CLI::App* solve_command = app.add_subcommand(
+Command addSolve(CLI::App& parent, bool& json_flag) {
+  auto solve = std::make_shared<SolveOptions>();
+  CLI::App* command = parent.add_subcommand(
       "solve",
       "One boundary-value problem: from the problem's start to its goal, a trajectory locally "
-      "optimal for its cost (newton, newton_fd, ipopt, ceres, shooting, collocation). Exit 0 "
-      "converged, 1 not solved "
-      "(the report says why), 2 bad input.");
-  solve_command->add_option("PROBLEM", solve.problem, "problem YAML")->required();
-  solve_command->add_option("--method", solve.method, "overrides solver.method")
+      "optimal for its cost (auto, newton, newton_fd, ipopt, ceres, shooting, collocation). "
+      "Exit 0 converged, 1 not solved (the report says why), 2 bad input.");
+  command->add_option("PROBLEM", solve->problem, "problem YAML")->required();
+  command->add_option("--method", solve->method, "overrides solver.method")
       ->check(CLI::IsMember(solverMethodNames()));
-  solve_command->add_option("--out", solve.out, "write the re-simulated trajectory (CSV)");
-  solve_command->add_option("--guess", solve.guess,
-                            "shooting / collocation: initial guess from a trajectory or x,y CSV");
-  solve_command->add_option("--plot", solve.plot,
-                            "draw the map, profiles and convergence (PNG; FILE, FILE-profiles, "
-                            "FILE-convergence)");
-  solve_command->add_flag("--json", json_flag, "print the report as one JSON object");
+  command->add_option("--out", solve->out, "write the re-simulated trajectory (CSV)");
+  command->add_option("--guess", solve->guess,
+                      "shooting / collocation: initial guess from a trajectory or x,y CSV");
+  command->add_option("--plot", solve->plot,
+                      "draw the map, profiles and convergence (PNG; FILE, FILE-profiles, "
+                      "FILE-convergence)");
+  command->add_flag("--json", json_flag, "print the report as one JSON object");
+  return {command, [solve](CommandContext& context) { return runSolve(*solve, context); }};
+}
 
-  PlanOptions plan;
-  CLI::App* plan_command = app.add_subcommand(
+Command addPlan(CLI::App& parent, bool& json_flag) {
+  auto plan = std::make_shared<PlanOptions>();
+  CLI::App* command = parent.add_subcommand(
       "plan",
       "Global planning from the problem's start to its goal region: the kinodynamic PRM "
       "(prm, anytime), the state lattice with A* / ARA* (lattice) or the topology-aware lattice "
@@ -241,44 +264,49 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       "--refine, also <out-dir>/refined_<k>.csv, each candidate refined into a locally optimal "
       "trajectory in its homotopy class. Exit 0 solved (and with --refine at least one "
       "refinement converged), 1 not, 2 bad input.");
-  plan_command->add_option("PROBLEM", plan.problem, "problem YAML")->required();
-  plan_command
-      ->add_option("--planner", plan.planner, "overrides planner.kind (prm, lattice, taeasl)")
+  command->add_option("PROBLEM", plan->problem, "problem YAML")->required();
+  command->add_option("--planner", plan->planner, "overrides planner.kind (prm, lattice, taeasl)")
       ->check(CLI::IsMember(plannerKindNames()));
-  plan_command->add_option("--time-limit", plan.time_limit_s, "overrides planner.time_limit_s [s]")
+  command->add_option("--time-limit", plan->time_limit_s, "overrides planner.time_limit_s [s]")
       ->check(kDecimal);
-  plan_command->add_option("--seed", plan.seed, "overrides planner.seed")->check(kCount);
-  plan_command->add_option("--out-dir", plan.out_dir, "output folder")->capture_default_str();
-  plan_command->add_flag("--refine", plan.refine,
-                         "refine every solution (refine.method; docs/refinement.md)");
-  plan_command->add_option("--method", plan.method, "with --refine: overrides refine.method")
+  command->add_option("--seed", plan->seed, "overrides planner.seed")->check(kCount);
+  command->add_option("--out-dir", plan->out_dir, "output folder")->capture_default_str();
+  command->add_flag("--refine", plan->refine,
+                    "refine every solution (refine.method; docs/refinement.md)");
+  command->add_option("--method", plan->method, "with --refine: overrides refine.method")
       ->check(CLI::IsMember(search::refineMethodNames()));
-  plan_command->add_option("--plot", plan.plot,
-                           "draw the map, profiles and convergence (PNG; FILE, FILE-profiles, "
-                           "FILE-convergence)");
-  plan_command->add_flag("--json", json_flag, "print the report as one JSON object");
+  command->add_option("--plot", plan->plot,
+                      "draw the map, profiles and convergence (PNG; FILE, FILE-profiles, "
+                      "FILE-convergence)");
+  command->add_flag("--json", json_flag, "print the report as one JSON object");
+  return {command, [plan](CommandContext& context) { return runPlan(*plan, context); }};
+}
 
-  RefineOptions refine;
-  CLI::App* refine_command = app.add_subcommand(
+Command addRefine(CLI::App& parent, bool& json_flag) {
+  auto refine = std::make_shared<RefineOptions>();
+  CLI::App* command = parent.add_subcommand(
       "refine",
       "Refine a given path or trajectory (a planner's or another tool's CSV: the contract's "
       "columns, or only x,y, or x,y,heading) into a locally optimal trajectory from the "
       "problem's start to its goal, in the candidate's homotopy class. Exit 0 converged, 1 "
       "not (the report says why), 2 bad input (including an unusable candidate).");
-  refine_command->add_option("PROBLEM", refine.problem, "problem YAML")->required();
-  refine_command->add_option("--candidate", refine.candidate, "the candidate CSV")->required();
-  refine_command->add_option("--method", refine.method, "overrides refine.method")
+  command->add_option("PROBLEM", refine->problem, "problem YAML")->required();
+  command->add_option("--candidate", refine->candidate, "the candidate CSV")->required();
+  command->add_option("--method", refine->method, "overrides refine.method")
       ->check(CLI::IsMember(search::refineMethodNames()));
-  refine_command->add_option("--out", refine.out, "write the refined trajectory (CSV)");
-  refine_command->add_option("--plot", refine.plot,
-                             "draw the map, profiles and convergence (PNG; FILE, FILE-profiles, "
-                             "FILE-convergence)");
-  refine_command->add_flag("--json", json_flag, "print the report as one JSON object");
+  command->add_option("--out", refine->out, "write the refined trajectory (CSV)");
+  command->add_option("--plot", refine->plot,
+                      "draw the map, profiles and convergence (PNG; FILE, FILE-profiles, "
+                      "FILE-convergence)");
+  command->add_flag("--json", json_flag, "print the report as one JSON object");
+  return {command, [refine](CommandContext& context) { return runRefine(*refine, context); }};
+}
 
-  BenchOptions bench;
-  bench.settings.data_dir = defaultDataDir();
-  BenchMergeOptions bench_merge;
-  CLI::App* bench_command = app.add_subcommand(
+// bench and bench merge (merge first: a subcommand of bench, both are "given" with it).
+std::vector<Command> addBench(CLI::App& parent, bool& json_flag) {
+  auto bench = std::make_shared<BenchOptions>();
+  bench->settings.data_dir = defaultDataDir();
+  CLI::App* command = parent.add_subcommand(
       "bench",
       "Benchmark suites (docs/benchmarks.md): convergence (every boundary-value solver on the "
       "004 problem sets and random problems on the real DEMs, and the robustness set), "
@@ -287,119 +315,174 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       "expansiveness sweeps, the lattice searches), refine (candidates against their "
       "refinements), tables (003 IV: physics-derived against data-driven tables). Writes one "
       "JSON file per run; `bench merge` joins shards.");
-  bench_command->add_option("SUITE", bench.suite,
-                            "convergence | robustness | planners | refine | tables");
-  bench_command->add_flag("--quick", bench.settings.quick,
-                          "a small subset of every set (seconds instead of minutes)");
-  bench_command->add_option("--seed", bench.settings.seed, "first seed of every random choice")
+  command->add_option("SUITE", bench->suite,
+                      "convergence | robustness | planners | refine | tables");
+  command->add_flag("--quick", bench->settings.quick,
+                    "a small subset of every set (seconds instead of minutes)");
+  command->add_option("--seed", bench->settings.seed, "first seed of every random choice")
       ->capture_default_str()
       ->check(kCount);
-  bench_command->add_option("--seeds", bench.settings.seeds, "repetitions (maps, planner seeds)")
+  command->add_option("--seeds", bench->settings.seeds, "repetitions (maps, planner seeds)")
       ->capture_default_str()
       ->check(kCount);
-  bench_command
-      ->add_option("--time-limit", bench.settings.time_limit_s,
+  command
+      ->add_option("--time-limit", bench->settings.time_limit_s,
                    "planners: longest anytime budget [s]")
       ->capture_default_str()
       ->check(kDecimal);
-  bench_command
-      ->add_option("--data-dir", bench.settings.data_dir,
+  command
+      ->add_option("--data-dir", bench->settings.data_dir,
                    "folder of the real DEMs (\"\" skips them)")
       ->capture_default_str();
-  bench_command->add_option("--out", bench.out, "result file (default bench-SUITE.json)");
-  bench_command->add_option("--plot", bench.plot, "also draw the figures: FILE.png and siblings");
-  bench_command->add_option("--shard", bench.shard, "K/N: run every N-th case from the K-th")
+  command->add_option("--out", bench->out, "result file (default bench-SUITE.json)");
+  command->add_option("--plot", bench->plot, "also draw the figures: FILE.png and siblings");
+  command->add_option("--shard", bench->shard, "K/N: run every N-th case from the K-th")
       ->capture_default_str();
-  bench_command->add_option("--jobs", bench.jobs, "worker processes")
+  command->add_option("--jobs", bench->jobs, "worker processes")
       ->capture_default_str()
       ->check(kCount);
-  bench_command->add_option("--cases", bench.cases, "case indices (used by workers)")->group("");
-  bench_command->add_option("--worker-tag", bench.worker_tag, "(used by workers)")->group("");
-  bench_command->add_flag("--json", json_flag, "print the result (without rows) as JSON");
-  CLI::App* bench_merge_command =
-      bench_command->add_subcommand("merge", "Join result files of shards into one.");
-  bench_merge_command->add_option("FILES", bench_merge.inputs, "result files")->required();
-  bench_merge_command->add_option("--out", bench_merge.out, "merged file")->capture_default_str();
-  bench_merge_command->add_option("--plot", bench_merge.plot, "also draw the figures");
-  bench_merge_command->add_flag("--json", json_flag, "print the result (without rows) as JSON");
+  command->add_option("--cases", bench->cases, "case indices (used by workers)")->group("");
+  command->add_option("--worker-tag", bench->worker_tag, "(used by workers)")->group("");
+  command->add_flag("--json", json_flag, "print the result (without rows) as JSON");
 
-  PrimitivesOptions primitives;
-  CLI::App* primitives_command = app.add_subcommand(
+  auto merge = std::make_shared<BenchMergeOptions>();
+  CLI::App* merge_command =
+      command->add_subcommand("merge", "Join result files of shards into one.");
+  merge_command->add_option("FILES", merge->inputs, "result files")->required();
+  merge_command->add_option("--out", merge->out, "merged file")->capture_default_str();
+  merge_command->add_option("--plot", merge->plot, "also draw the figures");
+  merge_command->add_flag("--json", json_flag, "print the result (without rows) as JSON");
+  return {
+      {merge_command, [merge](CommandContext& context) { return runBenchMerge(*merge, context); }},
+      {command, [bench](CommandContext& context) {
+         if (bench->suite.empty()) {
+           throw InputError(
+               "bench: name a suite (convergence, robustness, planners, refine, tables) or "
+               "merge");
+         }
+         return runBench(*bench, context);
+       }}};
+}
+
+Command addPrimitives(CLI::App& parent, bool& json_flag) {
+  auto primitives = std::make_shared<PrimitivesOptions>();
+  CLI::App* command = parent.add_subcommand(
       "primitives",
       "Generate the motion primitives of the problem's lattice (planner.lattice_resolution_m, "
       "planner.heading_count) for its vehicle limits, with the boundary-value solver on flat "
       "ground, and write them as JSON (for planner.primitives).");
-  primitives_command->add_option("PROBLEM", primitives.problem, "problem YAML")->required();
-  primitives_command->add_option("--out", primitives.out, "primitive file to write")->required();
-  primitives_command->add_flag("--json", json_flag, "print the report as one JSON object");
+  command->add_option("PROBLEM", primitives->problem, "problem YAML")->required();
+  command->add_option("--out", primitives->out, "primitive file to write")->required();
+  command->add_flag("--json", json_flag, "print the report as one JSON object");
+  return {command,
+          [primitives](CommandContext& context) { return runPrimitives(*primitives, context); }};
+}
 
-  CLI::App* lut_command = app.add_subcommand(
-      "lut", "Kinodynamic look-up tables (speed limits by pitch, roll x curvature).");
-  lut_command->require_subcommand(1);
-
-  LutBuildOptions lut_build;
-  CLI::App* lut_build_command = lut_command->add_subcommand(
+Command addLutBuild(CLI::App& lut, bool& json_flag) {
+  auto build = std::make_shared<LutBuildOptions>();
+  CLI::App* command = lut.add_subcommand(
       "build",
       "Data-driven table from a driving log: each bin holds the mean of the top 1 % of "
       "its speeds; bins without data hold 0.");
-  lut_build_command
-      ->add_option("--log", lut_build.log,
+  command
+      ->add_option("--log", build->log,
                    "driving log (trajectory CSV with roll, "
                    "pitch, v and curvature or omega)")
       ->required();
-  lut_build_command->add_option("--out", lut_build.out, "table JSON to write")->required();
-  addBinningOptions(*lut_build_command, lut_build.binning);
-  lut_build_command
-      ->add_option("--top-fraction", lut_build.data.top_fraction,
+  command->add_option("--out", build->out, "table JSON to write")->required();
+  addBinningOptions(*command, build->binning);
+  command
+      ->add_option("--top-fraction", build->data.top_fraction,
                    "fraction of each bin's fastest speeds averaged")
       ->capture_default_str();
-  lut_build_command->add_flag("--fill", lut_build.data.fill_empty,
-                              "fill empty bins between filled ones by linear interpolation");
-  lut_build_command->add_flag("--json", json_flag, "print one JSON object");
+  command->add_flag("--fill", build->data.fill_empty,
+                    "fill empty bins between filled ones by linear interpolation");
+  command->add_flag("--json", json_flag, "print one JSON object");
+  return {command, [build](CommandContext& context) { return runLutBuild(*build, context); }};
+}
 
-  LutCheckOptions lut_check;
-  CLI::App* lut_check_command = lut_command->add_subcommand(
+Command addLutCheck(CLI::App& lut, bool& json_flag) {
+  auto check = std::make_shared<LutCheckOptions>();
+  CLI::App* command = lut.add_subcommand(
       "check", "Fraction of a trajectory's states faster than the tables allow.");
-  lut_check_command->add_option("TRAJECTORY", lut_check.trajectory, "trajectory CSV")->required();
-  lut_check_command
-      ->add_option("--table", lut_check.tables,
+  command->add_option("TRAJECTORY", check->trajectory, "trajectory CSV")->required();
+  command
+      ->add_option("--table", check->tables,
                    "table JSON (repeat for a pitch and a roll_curvature table)")
       ->required();
-  lut_check_command
-      ->add_option("--tolerance", lut_check.tolerance, "speed above v_max tolerated [m/s]")
+  command->add_option("--tolerance", check->tolerance, "speed above v_max tolerated [m/s]")
       ->capture_default_str();
-  lut_check_command->add_flag("--json", json_flag, "print one JSON object");
+  command->add_flag("--json", json_flag, "print one JSON object");
+  return {command, [check](CommandContext& context) { return runLutCheck(*check, context); }};
+}
 
-  LutPhysicsOptions lut_physics;
-  CLI::App* lut_physics_command = lut_command->add_subcommand(
+Command addLutPhysics(CLI::App& lut, bool& json_flag) {
+  auto physics = std::make_shared<LutPhysicsOptions>();
+  CLI::App* command = lut.add_subcommand(
       "physics",
       "Physics-derived table (003_... appendix I: tip-over in turns, braking distance).");
-  lut_physics_command->add_option("--out", lut_physics.out, "table JSON to write")->required();
-  addBinningOptions(*lut_physics_command, lut_physics.binning);
-  models::PhysicsTableParameters& p = lut_physics.parameters;
-  lut_physics_command->add_option("--half-track", p.half_track, "[m]")->capture_default_str();
-  lut_physics_command->add_option("--cog-height", p.cog_height, "[m]")->capture_default_str();
-  lut_physics_command->add_option("--friction", p.friction, "friction coefficient")
+  command->add_option("--out", physics->out, "table JSON to write")->required();
+  addBinningOptions(*command, physics->binning);
+  models::PhysicsTableParameters& p = physics->parameters;
+  command->add_option("--half-track", p.half_track, "[m]")->capture_default_str();
+  command->add_option("--cog-height", p.cog_height, "[m]")->capture_default_str();
+  command->add_option("--friction", p.friction, "friction coefficient")->capture_default_str();
+  command->add_option("--vehicle-length", p.vehicle_length, "[m] (braking distance = 2 lengths)")
       ->capture_default_str();
-  lut_physics_command
-      ->add_option("--vehicle-length", p.vehicle_length, "[m] (braking distance = 2 lengths)")
-      ->capture_default_str();
-  lut_physics_command->add_option("--speed-cap", p.speed_cap, "[m/s]")->capture_default_str();
-  lut_physics_command->add_flag("--json", json_flag, "print one JSON object");
+  command->add_option("--speed-cap", p.speed_cap, "[m/s]")->capture_default_str();
+  command->add_flag("--json", json_flag, "print one JSON object");
+  return {command, [physics](CommandContext& context) { return runLutPhysics(*physics, context); }};
+}
 
-  LutSimulateOptions lut_simulate;
-  CLI::App* lut_simulate_command = lut_command->add_subcommand(
-      "simulate-log",
-      "Simulated expert driving log (a driver who drives fast but avoids hard "
-      "turns with the roll against them) on generated hills.");
-  lut_simulate_command->add_option("--out", lut_simulate.out, "trajectory CSV to write")
-      ->required();
-  lut_simulate_command->add_option("--seed", lut_simulate.driver.seed)
-      ->capture_default_str()
-      ->check(kCount);
-  lut_simulate_command->add_option("--duration", lut_simulate.driver.duration, "[s]")
-      ->capture_default_str();
-  lut_simulate_command->add_flag("--json", json_flag, "print one JSON object");
+Command addLutSimulateLog(CLI::App& lut, bool& json_flag) {
+  auto simulate = std::make_shared<LutSimulateOptions>();
+  CLI::App* command =
+      lut.add_subcommand("simulate-log",
+                         "Simulated expert driving log (a driver who drives fast but avoids hard "
+                         "turns with the roll against them) on generated hills.");
+  command->add_option("--out", simulate->out, "trajectory CSV to write")->required();
+  command->add_option("--seed", simulate->driver.seed)->capture_default_str()->check(kCount);
+  command->add_option("--duration", simulate->driver.duration, "[s]")->capture_default_str();
+  command->add_flag("--json", json_flag, "print one JSON object");
+  return {command,
+          [simulate](CommandContext& context) { return runLutSimulateLog(*simulate, context); }};
+}
+
+std::vector<Command> addLut(CLI::App& parent, bool& json_flag) {
+  CLI::App* lut = parent.add_subcommand(
+      "lut", "Kinodynamic look-up tables (speed limits by pitch, roll x curvature).");
+  lut->require_subcommand(1);
+  return {addLutBuild(*lut, json_flag), addLutCheck(*lut, json_flag),
+          addLutPhysics(*lut, json_flag), addLutSimulateLog(*lut, json_flag)};
+}
+
+// Every command, in the order of --help; a command before its parent.
+std::vector<Command> addCommands(CLI::App& app, bool& json_flag) {
+  std::vector<Command> commands{addDemo(app, json_flag)};
+  const auto append = [&commands](std::vector<Command> more) {
+    for (Command& command : more) commands.push_back(std::move(command));
+  };
+  append(addTerrain(app, json_flag));
+  commands.push_back(addCheck(app, json_flag));
+  commands.push_back(addSolve(app, json_flag));
+  commands.push_back(addPlan(app, json_flag));
+  commands.push_back(addRefine(app, json_flag));
+  append(addBench(app, json_flag));
+  commands.push_back(addPrimitives(app, json_flag));
+  append(addLut(app, json_flag));
+  return commands;
+}
+
+}  // namespace
+
+int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
+           const std::atomic<bool>* stop) {
+  CommandContext context{out, err, wantsJson(argc, argv), makeLogger(err), stop};
+  CLI::App app{"terratraj: optimal trajectories for ground rovers on terrain.", "terratraj"};
+  app.set_version_flag("--version", kVersion);
+  app.require_subcommand(1);
+  bool json_flag = false;  // each command's --json sets this; wantsJson() already saw it
+  const std::vector<Command> commands = addCommands(app, json_flag);
 
   if (const std::optional<std::string> unknown = unknownCommand(argc, argv, app)) {
     return reportError(*unknown, kExitBadInput, context);
@@ -410,29 +493,10 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (e.get_exit_code() == 0) return app.exit(e, out, err);  // --help, --version
     return reportError(e.what(), kExitBadInput, context);
   }
-
   try {
-    if (*demo_command) return runDemo(demo, context);
-    if (*bench_merge_command) return runBenchMerge(bench_merge, context);
-    if (*bench_command) {
-      if (bench.suite.empty())
-        throw InputError("bench: name a suite (convergence, planners, refine, tables) or merge");
-      return runBench(bench, context);
+    for (const Command& command : commands) {
+      if (*command.app) return command.run(context);
     }
-    if (*info_command) return runTerrainInfo(info, context);
-    if (*generate_command) {
-      generate.generator.kind = *terrain::parseTerrainKind(kind_name);
-      return runTerrainGenerate(generate, context);
-    }
-    if (*check_command) return runCheck(check, context);
-    if (*solve_command) return runSolve(solve, context);
-    if (*plan_command) return runPlan(plan, context);
-    if (*refine_command) return runRefine(refine, context);
-    if (*primitives_command) return runPrimitives(primitives, context);
-    if (*lut_build_command) return runLutBuild(lut_build, context);
-    if (*lut_check_command) return runLutCheck(lut_check, context);
-    if (*lut_physics_command) return runLutPhysics(lut_physics, context);
-    if (*lut_simulate_command) return runLutSimulateLog(lut_simulate, context);
   } catch (const InputError& e) {
     return reportError(e.what(), kExitBadInput, context);
   } catch (const std::bad_alloc&) {

@@ -427,9 +427,7 @@ models::Trajectory reintegrate(const ExtensionPropagator& propagator,
 
 }  // namespace
 
-const char* omplPlannerName(OmplPlanner planner) {
-  return planner == OmplPlanner::kRrt ? "ompl_rrt" : "ompl_sst";
-}
+bool omplPeersAvailable() { return true; }
 
 OmplRun runOmplPeer(const search::PlanningProblem& problem, OmplPlanner planner, double budget_s,
                     std::uint64_t seed) {

@@ -273,7 +273,11 @@ class PlannersSuite final : public BenchmarkSuite {
       peers[name] = {{"geometric_mean", std::exp(log_sum / static_cast<double>(v.size()))},
                      {"variants", v.size()}};
     }
-    return {{"median_by_variant", out}, {"peers_over_prm", peers}};
+    nlohmann::json summary{{"median_by_variant", out}, {"peers_over_prm", peers}};
+    if (!omplPeersAvailable()) {
+      summary["ompl_peers"] = "unavailable (built with -DTERRATRAJ_WITH_OMPL=OFF)";
+    }
+    return summary;
   }
 
   std::string summaryText(const nlohmann::json& summary) const override {
@@ -285,6 +289,9 @@ class PlannersSuite final : public BenchmarkSuite {
            << brief(m, "prm_first_ms") << brief(m, "prm_cost_1s") << brief(m, "prm_cost_final_s")
            << brief(m, "ara_first_ms") << brief(m, "ara_best_cost_s")
            << brief(m, "trapped_fraction") << '\n';
+    }
+    if (summary.contains("ompl_peers")) {
+      text << "OMPL peers: " << summary["ompl_peers"].get<std::string>() << '\n';
     }
     text << "peers / PRM (geometric mean over variants):\n";
     for (const auto& [name, r] : summary["peers_over_prm"].items()) {
@@ -316,8 +323,10 @@ class PlannersSuite final : public BenchmarkSuite {
     row["lower_bound_s"] = w.lowerBoundTime();
     row["prm"] = prmRow(w, seed, budget);
     row["lattice"] = latticeRows(w, std::min(budget, 1.0));
-    for (const OmplPlanner peer : {OmplPlanner::kRrt, OmplPlanner::kSst}) {
-      row[omplPlannerName(peer)] = omplRow(w, peer, seed, budget);
+    if (omplPeersAvailable()) {
+      for (const OmplPlanner peer : {OmplPlanner::kRrt, OmplPlanner::kSst}) {
+        row[omplPlannerName(peer)] = omplRow(w, peer, seed, budget);
+      }
     }
     return row;
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -81,6 +82,37 @@ class AugmentedLagrangianResiduals final : public ceres::CostFunction {
   mutable ParametricEvaluation eval_;
 };
 
+// Why `options` cannot be used, or nothing.
+std::optional<std::string> optionsError(const CeresOptions& options) {
+  if (options.max_iterations < 1 || options.max_outer_iterations < 1) {
+    return "max_iterations and max_outer_iterations must be >= 1";
+  }
+  if (!(options.initial_penalty > 0.0) || !std::isfinite(options.initial_penalty)) {
+    return "initial_penalty must be a positive number";
+  }
+  if (options.time_limit_s && !(*options.time_limit_s >= 0.0)) {
+    return "time_limit_s must be >= 0";
+  }
+  return std::nullopt;
+}
+
+// The inner (trust-region) solves' settings.
+ceres::Solver::Options innerSolverOptions(const ConvergenceCriteria& criteria) {
+  ceres::Solver::Options solver_options;
+  solver_options.minimizer_type = ceres::TRUST_REGION;
+  solver_options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  solver_options.linear_solver_type = ceres::DENSE_QR;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.minimizer_progress_to_stdout = false;
+  solver_options.num_threads = 1;
+  // Inner solves end on the gradient of the augmented Lagrangian, g + A' (lambda + mu c):
+  // the next multipliers' stationarity.
+  solver_options.gradient_tolerance = 0.1 * criteria.lagrangian_gradient;
+  solver_options.function_tolerance = 1e-12;
+  solver_options.parameter_tolerance = 1e-12;
+  return solver_options;
+}
+
 SolveResult runCeres(ParametricTrajectoryModel& model, const Eigen::VectorXd& q0,
                      const CeresOptions& options, SolveResult& result,
                      const detail::SolveAccounting& accounting) {
@@ -91,14 +123,8 @@ SolveResult runCeres(ParametricTrajectoryModel& model, const Eigen::VectorXd& q0
   const int itf = model.finalTimeIndex();
   const ConvergenceCriteria& criteria = options.criteria;
   if (q0.size() != n) return finish(SolveStatus::kError, "initial guess has the wrong size");
-  if (options.max_iterations < 1 || options.max_outer_iterations < 1) {
-    return finish(SolveStatus::kError, "max_iterations and max_outer_iterations must be >= 1");
-  }
-  if (!(options.initial_penalty > 0.0) || !std::isfinite(options.initial_penalty)) {
-    return finish(SolveStatus::kError, "initial_penalty must be a positive number");
-  }
-  if (options.time_limit_s && !(*options.time_limit_s >= 0.0)) {
-    return finish(SolveStatus::kError, "time_limit_s must be >= 0");
+  if (const std::optional<std::string> error = optionsError(options)) {
+    return finish(SolveStatus::kError, *error);
   }
 
   // Owned here, not by the problem.
@@ -138,18 +164,7 @@ SolveResult runCeres(ParametricTrajectoryModel& model, const Eigen::VectorXd& q0
   problem.AddResidualBlock(&residuals, nullptr, q.data());
   problem.SetParameterLowerBound(q.data(), itf, kMinFinalTime);
 
-  ceres::Solver::Options solver_options;
-  solver_options.minimizer_type = ceres::TRUST_REGION;
-  solver_options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  solver_options.linear_solver_type = ceres::DENSE_QR;
-  solver_options.logging_type = ceres::SILENT;
-  solver_options.minimizer_progress_to_stdout = false;
-  solver_options.num_threads = 1;
-  // Inner solves end on the gradient of the augmented Lagrangian, g + A' (lambda + mu c):
-  // the next multipliers' stationarity.
-  solver_options.gradient_tolerance = 0.1 * criteria.lagrangian_gradient;
-  solver_options.function_tolerance = 1e-12;
-  solver_options.parameter_tolerance = 1e-12;
+  ceres::Solver::Options solver_options = innerSolverOptions(criteria);
 
   int used = 0;
   for (int outer = 1; outer <= options.max_outer_iterations; ++outer) {

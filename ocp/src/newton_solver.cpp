@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "solve_accounting.hpp"
 
@@ -50,6 +51,47 @@ void dampedBfgsUpdate(const Eigen::VectorXd& s, const Eigen::VectorXd& y, Eigen:
   const double sr = s.dot(r);
   if (!(sr > 1e-16)) return;
   w += r * r.transpose() / sr - ws * ws.transpose() / sws;
+}
+
+// Backtracking on the l1 merit from q along d, from alpha (in: the largest step; out: the step
+// taken), at most 40 halvings, with one second-order correction against the Maratos effect (a
+// projection back onto c = 0). Without options.line_search the full step is taken. On success
+// q_next and trial hold the accepted point; otherwise `why` says why.
+bool lineSearch(ParametricTrajectoryModel& model, const NewtonOptions& options,
+                const ParametricEvaluation& current, const Eigen::VectorXd& q,
+                const Eigen::VectorXd& d, double nu, ParametricEvaluation& trial,
+                ParametricEvaluation& correction, Eigen::VectorXd& q_next, double& alpha,
+                std::string& why) {
+  const DerivativeMode mode = options.derivatives;
+  const int itf = model.finalTimeIndex();
+  const double merit0 = merit(current, nu);
+  const double slope = current.gradient.dot(d) - nu * current.terminal_error.lpNorm<1>();
+  for (int trial_count = 0; trial_count < 40; ++trial_count, alpha *= 0.5) {
+    q_next = q + alpha * d;
+    const bool ok = model.evaluate(q_next, mode, trial);
+    if (!options.line_search) {
+      if (!ok) why = "full Newton step: " + trial.message;
+      return ok;
+    }
+    if (ok && merit(trial, nu) <= merit0 + 1e-4 * alpha * std::min(slope, 0.0)) return true;
+    if (ok && trial_count == 0) {
+      const Eigen::MatrixXd& a = current.jacobian;
+      const Eigen::VectorXd soc =
+          -a.transpose() *
+          (a * a.transpose()).completeOrthogonalDecomposition().solve(trial.terminal_error);
+      Eigen::VectorXd q_soc = q_next + soc;
+      if (q_soc(itf) > options.min_final_time_s && model.evaluate(q_soc, mode, correction) &&
+          merit(correction, nu) <= merit0 + 1e-4 * alpha * std::min(slope, 0.0)) {
+        q_next = q_soc;
+        std::swap(trial, correction);
+        return true;
+      }
+    }
+    if (alpha < 1e-8) break;
+  }
+  why = "the line search found no decrease of the merit function (the last trial: " +
+        (trial.ok() ? std::string("no decrease") : trial.message) + ")";
+  return false;
 }
 
 }  // namespace
@@ -145,44 +187,11 @@ SolveResult solveNewton(ParametricTrajectoryModel& model, const NewtonStart& sta
       }
     }
     nu = std::max(nu, 1.1 * lambda_next.lpNorm<Eigen::Infinity>() + 1e-3);
-    const double merit0 = merit(current, nu);
-    const double slope = current.gradient.dot(d) - nu * current.terminal_error.lpNorm<1>();
     double alpha = alpha_max;
-    bool accepted = false;
     Eigen::VectorXd q_next;
-    for (int trial_count = 0; trial_count < 40; ++trial_count, alpha *= 0.5) {
-      q_next = q + alpha * d;
-      const bool ok = model.evaluate(q_next, mode, trial);
-      if (!options.line_search) {
-        if (!ok) return finish(SolveStatus::kDiverged, "full Newton step: " + trial.message);
-        accepted = true;
-        break;
-      }
-      if (ok && merit(trial, nu) <= merit0 + 1e-4 * alpha * std::min(slope, 0.0)) {
-        accepted = true;
-        break;
-      }
-      if (ok && trial_count == 0) {
-        // Second-order correction against the Maratos effect: project back onto c = 0.
-        const Eigen::MatrixXd& a = current.jacobian;
-        const Eigen::VectorXd soc =
-            -a.transpose() *
-            (a * a.transpose()).completeOrthogonalDecomposition().solve(trial.terminal_error);
-        Eigen::VectorXd q_soc = q_next + soc;
-        if (q_soc(itf) > options.min_final_time_s && model.evaluate(q_soc, mode, correction) &&
-            merit(correction, nu) <= merit0 + 1e-4 * alpha * std::min(slope, 0.0)) {
-          q_next = q_soc;
-          std::swap(trial, correction);
-          accepted = true;
-          break;
-        }
-      }
-      if (alpha < 1e-8) break;
-    }
-    if (!accepted) {
-      return finish(SolveStatus::kDiverged,
-                    "the line search found no decrease of the merit function (the last trial: " +
-                        (trial.ok() ? std::string("no decrease") : trial.message) + ")");
+    std::string why;
+    if (!lineSearch(model, options, current, q, d, nu, trial, correction, q_next, alpha, why)) {
+      return finish(SolveStatus::kDiverged, why);
     }
     if (options.hessian == HessianApproximation::kBfgs) {
       const Eigen::VectorXd grad_old =

@@ -12,8 +12,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Whether every cell within `margin` of (x, y) [local frame] holds data.
-bool dataAround(const terrain::ElevationMap& map, double x, double y, double margin) {
+}  // namespace
+
+bool clearAround(const terrain::ElevationMap& map, double x, double y, double margin) {
   const terrain::GridGeometry& g = map.geometry();
   const int reach = static_cast<int>(std::ceil(margin / g.cell));
   const int col = static_cast<int>(std::floor(x / g.cell));
@@ -26,8 +27,6 @@ bool dataAround(const terrain::ElevationMap& map, double x, double y, double mar
   }
   return true;
 }
-
-}  // namespace
 
 models::VehicleLimits looseLimits() {
   models::VehicleLimits limits;
@@ -140,8 +139,8 @@ std::vector<BoundaryValueProblem> randomProblems(const terrain::ElevationMap& ma
     const double x1 = x0 + distance * std::cos(bearing), y1 = y0 + distance * std::sin(bearing);
     const double h0 = bearing + options.max_heading_change * (2.0 * unit(random) - 1.0);
     const double h1 = bearing + options.max_heading_change * (2.0 * unit(random) - 1.0);
-    if (!dataAround(map, x0, y0, options.edge_margin_m) ||
-        !dataAround(map, x1, y1, options.edge_margin_m)) {
+    if (!clearAround(map, x0, y0, options.edge_margin_m) ||
+        !clearAround(map, x1, y1, options.edge_margin_m)) {
       continue;
     }
     problems.push_back(cruise(x0, y0, wrapAngle(h0), x1, y1, wrapAngle(h1)));

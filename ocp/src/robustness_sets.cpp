@@ -3,25 +3,12 @@
 #include <cmath>
 #include <random>
 
+#include "terratraj/ocp/problem_sets.hpp"
+
 namespace terratraj::ocp::problem_sets {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-// Whether every cell within `margin` of (x, y) holds data and none is lethal.
-bool clearAround(const terrain::ElevationMap& map, double x, double y, double margin) {
-  const terrain::GridGeometry& g = map.geometry();
-  const int reach = static_cast<int>(std::ceil(margin / g.cell));
-  const int col = static_cast<int>(std::floor(x / g.cell));
-  const int row = static_cast<int>(std::floor(y / g.cell));
-  for (int r = row - reach; r <= row + reach; ++r) {
-    for (int c = col - reach; c <= col + reach; ++c) {
-      if (r < 0 || c < 0 || r >= g.rows || c >= g.cols) return false;
-      if (map.isNoData({r, c}) || map.isLethal({r, c})) return false;
-    }
-  }
-  return true;
-}
 
 BoundaryValueProblem roverProblem(const VehicleState& start, const VehicleState& goal) {
   BoundaryValueProblem problem;

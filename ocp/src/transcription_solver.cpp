@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "terratraj/ocp/deadline.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
 #include "terratraj/ocp/start_at_goal.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
@@ -146,14 +147,7 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
                      : "the start meets the goal but fails the check: " + out.verdict.reason;
     return finish();
   }
-  const auto left = [&]() -> std::optional<double> {
-    if (!options.time_limit_s) return std::nullopt;
-    return std::max(0.0, *options.time_limit_s - secondsSince(started));
-  };
-  const auto over = [&] {
-    return (options.stop != nullptr && options.stop->load()) ||
-           (options.time_limit_s && secondsSince(started) >= *options.time_limit_s);
-  };
+  const Deadline deadline(started, options.time_limit_s, options.stop);
   DirectTranscriptionOptions transcription = options.transcription;
   // Verified against the true limits, and against lethal cells only (the verdict) rather than
   // the clearance the solver kept.
@@ -164,11 +158,11 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
   bool doubled = false, widened = false;
   TranscriptionGuess start = guess;
   for (int round = 0; round <= options.max_rounds; ++round) {
-    if (round > 0 && over()) {
+    if (round > 0 && deadline.over()) {
       out.reason += " (no further round: the time limit is reached or a stop was requested)";
       break;
     }
-    transcription.time_limit_s = left();
+    transcription.time_limit_s = deadline.left();
     if (transcription.model.segway) transcription.model.segway->bound_scale = 1.0 - speed_margin;
     out.solution = solveDirectTranscription(vehicle, tightened(problem, speed_margin, limit_margin),
                                             start, transcription);

@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "terratraj/ocp/deadline.hpp"
 #include "terratraj/ocp/dubins_path.hpp"
 #include "terratraj/ocp/initial_guess.hpp"
 #include "terratraj/ocp/start_at_goal.hpp"
@@ -227,14 +228,7 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
                            const ocp::BoundaryValueProblem& problem,
                            const terrain::ElevationMap* map, const SeededSolveOptions& options) {
   const Clock::time_point started = Clock::now();
-  const auto left = [&]() -> std::optional<double> {
-    if (!options.time_limit_s) return std::nullopt;
-    return std::max(0.0, *options.time_limit_s - secondsSince(started));
-  };
-  const auto over = [&] {
-    return (options.stop != nullptr && options.stop->load()) ||
-           (options.time_limit_s && secondsSince(started) >= *options.time_limit_s);
-  };
+  const ocp::Deadline deadline(started, options.time_limit_s, options.stop);
   SeededSolution best;
   bool any_candidate = false;
   best.method = coreMethodName(options.method);
@@ -266,15 +260,15 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
     SeededSolveOptions parametric = options;
     parametric.method = CoreMethod::kIpopt;
     const Clock::time_point t0 = Clock::now();
-    SeededSolution step = attempt(vehicle, problem, map, parametric, &seed, left());
+    SeededSolution step = attempt(vehicle, problem, map, parametric, &seed, deadline.left());
     std::optional<ocp::TranscriptionGuess> guess;
     if (step.verified.ok) guess = ocp::guessFromTrajectory(step.verified.trajectory);
     const double length = step.verified.length;
     record(std::move(step), t0, false);
-    if (!guess || over()) return;
+    if (!guess || deadline.over()) return;
     const Seed bridged{"ipopt from " + seed.name, length, std::move(*guess), seed.turning};
     const Clock::time_point t1 = Clock::now();
-    record(attempt(vehicle, problem, map, options, &bridged, left()), t1);
+    record(attempt(vehicle, problem, map, options, &bridged, deadline.left()), t1);
   };
   const bool transcription = isTranscription(options.method);
   if (options.initial_guess == InitialGuessKind::kFlat ||
@@ -291,10 +285,10 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
       if (!guess) guess = ocp::TranscriptionGuess{};
       const Seed seed{"flat heuristic (004) via newton", parametric.verified.length, *guess, 0.0};
       const Clock::time_point t0 = Clock::now();
-      record(attempt(vehicle, problem, map, options, &seed, left()), t0);
+      record(attempt(vehicle, problem, map, options, &seed, deadline.left()), t0);
     } else {
       const Clock::time_point t0 = Clock::now();
-      record(attempt(vehicle, problem, map, options, nullptr, left()), t0);
+      record(attempt(vehicle, problem, map, options, nullptr, deadline.left()), t0);
     }
   } else {
     int blocked = 0;
@@ -302,14 +296,14 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
     double shortest = seeds.empty() ? 0.0 : seeds.front().length;
     for (const Seed& seed : seeds) {
       if (!best.attempts.empty()) {
-        if (over()) break;
+        if (deadline.over()) break;
         const bool failed = best.status != ocp::SolveStatus::kConverged;
         if (!failed && seed.length > options.retry_length_ratio * shortest) break;
       }
       const Clock::time_point t0 = Clock::now();
-      record(attempt(vehicle, problem, map, options, &seed, left()), t0);
+      record(attempt(vehicle, problem, map, options, &seed, deadline.left()), t0);
       if (options.method == CoreMethod::kAuto && best.status != ocp::SolveStatus::kConverged &&
-          !over()) {
+          !deadline.over()) {
         bridgeThroughIpopt(seed);
       }
     }
@@ -317,12 +311,13 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
     // terrain the words cross badly): a search seed, whose route follows the terrain within
     // the limits.
     if (best.status != ocp::SolveStatus::kConverged && map != nullptr &&
-        options.search_time_s > 0.0 && (seeds.empty() || blocked > 0 || transcription) && !over()) {
+        options.search_time_s > 0.0 && (seeds.empty() || blocked > 0 || transcription) &&
+        !deadline.over()) {
       const Clock::time_point t0 = Clock::now();
       const std::string why = blocked > 0 && seeds.empty()
                                   ? "every Dubins word crosses an impassable cell"
                                   : "no Dubins word gave a verified trajectory";
-      record(solveFromSearch(vehicle, problem, *map, options, left(), why), t0);
+      record(solveFromSearch(vehicle, problem, *map, options, deadline.left(), why), t0);
     }
     if (best.attempts.empty()) {
       best.status = ocp::SolveStatus::kInfeasible;

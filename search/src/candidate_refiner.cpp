@@ -18,14 +18,6 @@ namespace {
 
 using models::TrajectoryColumn;
 
-constexpr std::array<std::pair<RefineMethod, const char*>, 5> kMethodNames{{
-    {RefineMethod::kAuto, "auto"},
-    {RefineMethod::kCollocation, "collocation"},
-    {RefineMethod::kShooting, "shooting"},
-    {RefineMethod::kNewton, "newton"},
-    {RefineMethod::kIpopt, "ipopt"},
-}};
-
 std::string formatNumber(double value) {
   std::ostringstream text;
   text << value;
@@ -163,11 +155,6 @@ std::vector<Eigen::Vector2d> polyline(const models::Trajectory& t) {
   return points;
 }
 
-// Shortcutting: the candidate is resampled this often [m] and a straight segment may skip at
-// most this many samples.
-constexpr double kShortcutSpacing = 0.5;
-constexpr std::size_t kShortcutWindow = 200;
-
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
@@ -175,104 +162,11 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-const char* refineMethodName(RefineMethod method) {
-  for (const auto& [m, name] : kMethodNames) {
-    if (m == method) return name;
-  }
-  return "?";
-}
-
-std::optional<RefineMethod> parseRefineMethod(std::string_view name) {
-  for (const auto& [m, text] : kMethodNames) {
-    if (name == text) return m;
-  }
-  return std::nullopt;
-}
-
-std::vector<std::string> refineMethodNames() {
-  std::vector<std::string> names;
-  for (const auto& entry : kMethodNames) names.emplace_back(entry.second);
-  return names;
-}
-
-std::optional<std::string> validateRefinementOptions(const RefinementOptions& o) {
-  if (!(o.interval_length_m > 0.0) || !std::isfinite(o.interval_length_m)) {
-    return "interval_length_m must be a finite number > 0 (got " +
-           formatNumber(o.interval_length_m) + ")";
-  }
-  if (o.min_intervals < 1) return "min_intervals must be >= 1";
-  if (o.max_intervals < o.min_intervals) return "max_intervals must be >= min_intervals";
-  if (!(o.min_clearance_m >= 0.0) || !std::isfinite(o.min_clearance_m)) {
-    return "min_clearance_m must be a finite number >= 0 (got " + formatNumber(o.min_clearance_m) +
-           ")";
-  }
-  if (!(o.guess_spacing_m > 0.0)) return "guess_spacing_m must be > 0";
-  if (!(o.worse_tolerance >= 0.0) || !std::isfinite(o.worse_tolerance)) {
-    return "worse_tolerance must be a finite number >= 0";
-  }
-  if (!(o.endpoint_tolerance_m > 0.0) || !std::isfinite(o.endpoint_tolerance_m)) {
-    return "endpoint_tolerance_m must be a finite number > 0";
-  }
-  if (o.time_limit_s && !(*o.time_limit_s >= 0.0)) return "time_limit_s must be >= 0";
-  if (o.margin_retries < 0) return "margin_retries must be >= 0";
-  if (!(o.shortcut_clearance_m >= 0.0) || !std::isfinite(o.shortcut_clearance_m)) {
-    return "shortcut_clearance_m must be a finite number >= 0";
-  }
-  if (!(o.shortcut_gain > 0.0 && o.shortcut_gain <= 1.0)) return "shortcut_gain must be in (0, 1]";
-  if (!(o.corridor_radius_m >= 0.0) || !std::isfinite(o.corridor_radius_m)) {
-    return "corridor_radius_m must be a finite number >= 0 (got " +
-           formatNumber(o.corridor_radius_m) + ")";
-  }
-  if (!(o.coarse_interval_length_m > 0.0) || !std::isfinite(o.coarse_interval_length_m)) {
-    return "coarse_interval_length_m must be a finite number > 0 (got " +
-           formatNumber(o.coarse_interval_length_m) + ")";
-  }
-  if (!(o.speed_margin >= 0.0 && o.speed_margin < 0.5)) {
-    return "speed_margin must be in [0, 0.5) (got " + formatNumber(o.speed_margin) + ")";
-  }
-  if (!(o.limit_margin >= 0.0 && o.limit_margin < 0.5)) {
-    return "limit_margin must be in [0, 0.5) (got " + formatNumber(o.limit_margin) + ")";
-  }
-  return ocp::validateTranscriptionOptions(o.transcription);
-}
-
 double RefinementResult::costRatio() const {
   if (!candidate_figures || !refined_figures || !(candidate_figures->cost > 0.0)) {
     return std::numeric_limits<double>::quiet_NaN();
   }
   return refined_figures->cost / candidate_figures->cost;
-}
-
-RefineMethod chooseRefineMethod(const RefinementOptions& options, double length_m,
-                                double min_clearance_m, int curvature_sign_changes,
-                                std::string& rule) {
-  if (options.method != RefineMethod::kAuto) {
-    rule = "as configured";
-    return options.method;
-  }
-  if (length_m > options.parametric_max_length_m) {
-    rule = "collocation: the candidate is " + formatNumber(length_m) +
-           " m long (polynomial controls up to " + formatNumber(options.parametric_max_length_m) +
-           " m)";
-    return RefineMethod::kCollocation;
-  }
-  if (min_clearance_m < options.parametric_min_clearance_m) {
-    rule = "collocation: the candidate passes " + formatNumber(min_clearance_m) +
-           " m from impassable cells (polynomial controls need " +
-           formatNumber(options.parametric_min_clearance_m) +
-           " m: they have no clearance constraint)";
-    return RefineMethod::kCollocation;
-  }
-  if (curvature_sign_changes > options.parametric_max_curvature_sign_changes) {
-    rule = "collocation: the candidate's curvature changes sign " +
-           std::to_string(curvature_sign_changes) + " times (the yaw-rate polynomial " +
-           "follows at most " + std::to_string(options.parametric_max_curvature_sign_changes) + ")";
-    return RefineMethod::kCollocation;
-  }
-  rule = "ipopt (polynomial controls): short (" + formatNumber(length_m) +
-         " m), clear of obstacles (" + formatNumber(min_clearance_m) + " m) and few turns (" +
-         std::to_string(curvature_sign_changes) + " curvature sign changes)";
-  return RefineMethod::kIpopt;
 }
 
 CandidateRefiner::CandidateRefiner(const PlanningProblem& problem,
@@ -286,17 +180,6 @@ CandidateRefiner::CandidateRefiner(const PlanningProblem& problem,
       candidate_requirements_(requirementsOf(problem)),
       refined_requirements_(ocp::solveRequirements(*problem.vehicle, bvp,
                                                    options.parametric.criteria, problem.map)) {}
-
-double CandidateRefiner::Deadline::secondsLeft() const {
-  if (!limit_s) return std::numeric_limits<double>::infinity();
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  return std::max(0.0, *limit_s - elapsed);
-}
-
-bool CandidateRefiner::Deadline::over() const {
-  return (stop != nullptr && stop->load()) || (limit_s && secondsLeft() <= 0.0);
-}
 
 TrajectoryFigures CandidateRefiner::measure(
     const models::Trajectory& trajectory,
@@ -389,6 +272,38 @@ void CandidateRefiner::accept(ocp::SolveStatus status, std::string reason,
   }
 }
 
+ocp::SolveStatus CandidateRefiner::refineAtStart(RefinementResult& out) const {
+  out.method_rule = "the start already meets the goal: nothing to drive";
+  if (std::optional<models::Trajectory> here =
+          ocp::startOnlyTrajectory(*problem_->vehicle, *bvp_)) {
+    out.verified.ok = true;
+    out.verified.trajectory = std::move(*here);
+    out.verdict = models::judgeTrajectory(out.verified.trajectory, refined_requirements_);
+    out.refined_figures = figuresOf(out.verified.trajectory);
+    out.refined_figures->check = out.verdict.check;
+    out.homotopy_kept = true;
+  }
+  return out.verified.ok ? ocp::statusAfterVerdict(ocp::SolveStatus::kConverged, out.verdict)
+                         : ocp::SolveStatus::kInfeasible;
+}
+
+void CandidateRefiner::solveParametric(const TrajectoryFigures& before, const Deadline& deadline,
+                                       RefinementResult& out) const {
+  // The speed free to rise and fall: a cubic speed polynomial at least (a linear one fixes the
+  // speed profile between the end speeds).
+  ocp::BoundaryValueProblem parametric = *bvp_;
+  parametric.orders.speed = std::max(parametric.orders.speed, 3);
+  ocp::BoundaryValueOptions settings = options_.parametric;
+  settings.method = out.method == RefineMethod::kNewton ? ocp::BoundaryValueMethod::kNewton
+                                                        : ocp::BoundaryValueMethod::kIpopt;
+  if (deadline.limit()) settings.time_limit_s = deadline.left();
+  out.parametric = ocp::solveBoundaryValue(*problem_->vehicle, parametric, settings, problem_->map);
+  out.verified = out.parametric->verified;
+  out.history = out.parametric->solver.history;
+  out.iterations = out.parametric->solver.iterations;
+  accept(out.parametric->status, out.parametric->reason, out.parametric->verdict, before, out);
+}
+
 RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) const {
   const auto started = std::chrono::steady_clock::now();
   RefinementResult out;
@@ -403,20 +318,8 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
     return finish(ocp::SolveStatus::kError, "refinement options: " + *why);
   }
   if (ocp::startMeetsGoal(*bvp_, options_.parametric.criteria)) {
-    // Nothing to drive: the one-row trajectory at the start, whatever the candidate.
-    out.method_rule = "the start already meets the goal: nothing to drive";
-    if (std::optional<models::Trajectory> here =
-            ocp::startOnlyTrajectory(*problem_->vehicle, *bvp_)) {
-      out.verified.ok = true;
-      out.verified.trajectory = std::move(*here);
-      out.verdict = models::judgeTrajectory(out.verified.trajectory, refined_requirements_);
-      out.refined_figures = figuresOf(out.verified.trajectory);
-      out.refined_figures->check = out.verdict.check;
-      out.homotopy_kept = true;
-    }
-    const ocp::SolveStatus status =
-        out.verified.ok ? ocp::statusAfterVerdict(ocp::SolveStatus::kConverged, out.verdict)
-                        : ocp::SolveStatus::kInfeasible;
+    // Nothing to drive, whatever the candidate.
+    const ocp::SolveStatus status = refineAtStart(out);
     return finish(status,
                   status == ocp::SolveStatus::kConverged ? out.method_rule : out.verdict.reason);
   }
@@ -475,30 +378,17 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   // 2. Choose the method.
   out.method = chooseRefineMethod(options_, before.length_m, before.min_clearance_m,
                                   curvatureSignChanges(out.candidate), out.method_rule);
-  const Deadline solver_deadline{
+  const Deadline solver_deadline(
       started,
       options_.time_limit_s
           ? std::optional<double>(std::max(0.0, *options_.time_limit_s - reserve_s))
           : std::nullopt,
-      options_.stop};
+      options_.stop);
 
   // 3. Solve; with kAuto, a parametric solve that fails or ends worse than the candidate falls
   // back to collocation.
   if (out.method == RefineMethod::kNewton || out.method == RefineMethod::kIpopt) {
-    // The speed free to rise and fall: a cubic speed polynomial at least (a linear one fixes
-    // the speed profile between the end speeds).
-    ocp::BoundaryValueProblem parametric = *bvp_;
-    parametric.orders.speed = std::max(parametric.orders.speed, 3);
-    ocp::BoundaryValueOptions settings = options_.parametric;
-    settings.method = out.method == RefineMethod::kNewton ? ocp::BoundaryValueMethod::kNewton
-                                                          : ocp::BoundaryValueMethod::kIpopt;
-    if (solver_deadline.limit_s) settings.time_limit_s = solver_deadline.secondsLeft();
-    out.parametric =
-        ocp::solveBoundaryValue(*problem_->vehicle, parametric, settings, problem_->map);
-    out.verified = out.parametric->verified;
-    out.history = out.parametric->solver.history;
-    out.iterations = out.parametric->solver.iterations;
-    accept(out.parametric->status, out.parametric->reason, out.parametric->verdict, before, out);
+    solveParametric(before, solver_deadline, out);
     const bool worse = worseThanCandidate(before, out);
     if ((out.status == ocp::SolveStatus::kConverged && !worse) ||
         options_.method != RefineMethod::kAuto || solver_deadline.over()) {
@@ -545,77 +435,6 @@ RefinementResult& CandidateRefiner::finishRefinement(
   return out;
 }
 
-terrain::ElevationMap CandidateRefiner::corridorMap(const models::Trajectory& candidate) const {
-  terrain::ElevationMap map = *problem_->map;
-  const terrain::GridGeometry& g = map.geometry();
-  terrain::GridLayer& lethal = map.addLayer(terrain::layer_names::kLethal, 0.0f);
-  std::vector<unsigned char> inside(g.cellCount(), 0);
-  const double radius = options_.corridor_radius_m;
-  const int reach = static_cast<int>(std::ceil(radius / g.cell));
-  const auto markDisc = [&](const Eigen::Vector2d& centre) {
-    const std::optional<terrain::CellIndex> c = g.cellAt(centre);
-    if (!c) return;
-    for (int r = std::max(0, c->row - reach); r <= std::min(g.rows - 1, c->row + reach); ++r) {
-      for (int k = std::max(0, c->col - reach); k <= std::min(g.cols - 1, c->col + reach); ++k) {
-        if ((g.cellCenter({r, k}) - centre).norm() <= radius) {
-          inside[g.linearIndex({r, k})] = 1;
-        }
-      }
-    }
-  };
-  // Discs every half cell along the candidate: their union is the corridor.
-  const std::vector<models::TrajectorySample>& s = candidate.samples;
-  for (std::size_t i = 0; i + 1 < s.size(); ++i) {
-    const Eigen::Vector2d a(s[i].x, s[i].y), b(s[i + 1].x, s[i + 1].y);
-    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / (0.5 * g.cell))));
-    for (int j = 0; j <= steps; ++j) markDisc(a + (b - a) * (static_cast<double>(j) / steps));
-  }
-  for (int r = 0; r < g.rows; ++r) {
-    for (int k = 0; k < g.cols; ++k) {
-      if (!inside[g.linearIndex({r, k})]) lethal(r, k) = 1.0f;
-    }
-  }
-  return map;
-}
-
-std::vector<Eigen::Vector2d> CandidateRefiner::shortcutPath(
-    const std::vector<Eigen::Vector2d>& path, double clearance) const {
-  // The path every half metre.
-  std::vector<Eigen::Vector2d> points{path.front()};
-  for (std::size_t i = 1; i < path.size(); ++i) {
-    const Eigen::Vector2d a = path[i - 1], b = path[i];
-    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / kShortcutSpacing)));
-    for (int j = 1; j <= steps; ++j)
-      points.push_back(a + (b - a) * (static_cast<double>(j) / steps));
-  }
-  const double step = 0.25 * problem_->map->geometry().cell;
-  const auto clear = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
-    for (int j = 0; j <= steps; ++j) {
-      const std::optional<terrain::Clearance> c =
-          clearance_.at(a + (b - a) * (static_cast<double>(j) / steps));
-      if (!c || c->distance < clearance) return false;
-    }
-    return true;
-  };
-  // Greedy: from each kept point, the farthest point within the window reachable straight.
-  std::vector<Eigen::Vector2d> out{points.front()};
-  std::size_t i = 0;
-  const std::size_t last = points.size() - 1;
-  while (i < last) {
-    std::size_t best = i + 1;
-    for (std::size_t j = std::min(last, i + kShortcutWindow); j > i + 1; --j) {
-      if (clear(points[i], points[j])) {
-        best = j;
-        break;
-      }
-    }
-    out.push_back(points[best]);
-    i = best;
-  }
-  return out;
-}
-
 void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
                                   const TrajectoryFigures& before,
                                   const terrain::ClearanceMap& clearance, const Deadline& deadline,
@@ -652,7 +471,7 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
   solve.limit_margin = options_.limit_margin;
   solve.max_rounds = options_.margin_retries;
   solve.max_intervals = options_.max_intervals;
-  solve.stop = deadline.stop;
+  solve.stop = deadline.stop();
   out.history.clear();
   out.iterations = 0;
   // A coarse mesh first for a wiggly candidate (one whose shortcut guess is in use): it is
@@ -666,7 +485,7 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
   if (out.guess_shortcut_m > 0.0 && coarse_intervals < transcription.intervals / 2) {
     ocp::DirectTranscriptionOptions coarse = transcription;
     coarse.intervals = coarse_intervals;
-    if (deadline.limit_s) coarse.time_limit_s = deadline.secondsLeft();
+    if (deadline.limit()) coarse.time_limit_s = deadline.left();
     const ocp::TranscriptionSolution solution = ocp::solveDirectTranscription(
         *problem_->vehicle,
         [&] {
@@ -685,7 +504,7 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
     out.coarse_status = solution.result.status;
     if (solution.result.status == ocp::SolveStatus::kConverged) start = solution.asGuess();
   }
-  if (deadline.limit_s) solve.time_limit_s = deadline.secondsLeft();
+  if (deadline.limit()) solve.time_limit_s = deadline.left();
   ocp::VerifiedTranscription result =
       ocp::solveTranscription(*problem_->vehicle, *bvp_, start, solve);
   for (ocp::IterationRecord r : result.history) {

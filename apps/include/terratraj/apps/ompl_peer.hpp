@@ -18,7 +18,13 @@ namespace terratraj::apps {
 
 enum class OmplPlanner { kRrt, kSst };
 /// "ompl_rrt", "ompl_sst".
-const char* omplPlannerName(OmplPlanner planner);
+inline const char* omplPlannerName(OmplPlanner planner) {
+  return planner == OmplPlanner::kRrt ? "ompl_rrt" : "ompl_sst";
+}
+
+/// Whether this build has the peers (false with -DTERRATRAJ_WITH_OMPL=OFF: runOmplPeer() then
+/// returns an unsolved run whose status says so).
+bool omplPeersAvailable();
 
 /// One OMPL run.
 struct OmplRun {

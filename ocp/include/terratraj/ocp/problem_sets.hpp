@@ -15,6 +15,10 @@
 
 namespace terratraj::ocp::problem_sets {
 
+/// Whether every cell within `margin` [m] of (x, y) [m, local frame] is on the map, holds data
+/// and is not lethal (problem ends a vehicle can stand on, away from the edges).
+bool clearAround(const terrain::ElevationMap& map, double x, double y, double margin);
+
 /// Limits loose enough that the unconstrained parametric solvers are judged on convergence.
 models::VehicleLimits looseLimits();
 
