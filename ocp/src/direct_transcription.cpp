@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <string>
+#include <string_view>
 
 #include "ipopt_status.hpp"
 
@@ -91,7 +93,28 @@ class IpoptTranscription final : public Ipopt::TNLP {
     std::fill(g_u, g_u + nlp_.defectRowCount(), 0.0);
     std::fill(g_l + nlp_.defectRowCount(), g_l + m, -kIpoptInfinity);
     std::fill(g_u + nlp_.defectRowCount(), g_u + m, 0.0);
+    freeDegenerateRestRows(m, g_u);
     return true;
+  }
+
+  // At an end at rest (v = omega = 0, fixed) the curvature rows +-omega - kappa_max v and the
+  // curvature-rate rows +-(omega' v - omega v') - sigma_max v^2 are identically 0 there: active
+  // with no free variable in them, they leave Ipopt no interior and drive their multipliers to
+  // 1e9 (seen on the Segway rest-to-rest problems, which then never converged). They are freed
+  // (no upper bound); the curvature at rest is held by the rest rows (omega' / v').
+  void freeDegenerateRestRows(Ipopt::Index m, Ipopt::Number* g_u) const {
+    const bool start_rest = problem_.start.v == 0.0 && problem_.start.omega == 0.0;
+    const bool goal_rest = problem_.goal.v == 0.0 && problem_.goal.omega == 0.0;
+    if (!start_rest && !goal_rest) return;
+    const int last = nlp_.points() - 1;
+    for (Ipopt::Index r = nlp_.defectRowCount(); r < m; ++r) {
+      const ConstraintRow row = nlp_.row(r);
+      if (row.defect || !((row.point == 0 && start_rest) || (row.point == last && goal_rest))) {
+        continue;
+      }
+      const std::string_view name = row.name;
+      if (name == "kappa_max" || name == "sigma_max") g_u[r] = kIpoptInfinity;
+    }
   }
 
   bool get_scaling_parameters(Ipopt::Number& obj_scaling, bool& use_x_scaling, Ipopt::Index n,

@@ -14,6 +14,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ipopt_status.hpp"
@@ -157,6 +158,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
       g_l[i] = i < 3 ? 0.0 : -kIpoptInfinity;
       g_u[i] = 0.0;
     }
+    freeDegenerateRestRows(g_u);
     return true;
   }
 
@@ -256,6 +258,27 @@ class TrajectoryNlp final : public Ipopt::TNLP {
   }
 
  private:
+  // At an end at rest (v = omega = 0, fixed by the controls' end values) the rows -v <= 0,
+  // +-omega - kappa_max v <= 0 and +-(omega' v - omega v') - sigma_max v^2 <= 0 are identically
+  // 0 at that path point, whatever q: active with a zero gradient, they leave Ipopt no interior
+  // and drive their multipliers up. They are freed (no upper bound); the rest rows hold the
+  // curvature there.
+  void freeDegenerateRestRows(Ipopt::Number* g_u) const {
+    if (rows_per_point_ == 0) return;
+    const BoundaryValueProblem& problem = model_.problem();
+    const auto at_rest = [](const VehicleState& s) { return s.v == 0.0 && s.omega == 0.0; };
+    const int last = static_cast<int>(tau_.size()) - 1;
+    for (const int point : {0, last}) {
+      if (!at_rest(point == 0 ? problem.start : problem.goal)) continue;
+      for (int r = 0; r < rows_per_point_; ++r) {
+        const std::string_view name = constraints_->name(r);
+        if (name == "v_min" || name == "kappa_max" || name == "sigma_max") {
+          g_u[3 + point * rows_per_point_ + r] = kIpoptInfinity;
+        }
+      }
+    }
+  }
+
   // The rows +-omega' - direction kappa v' <= 0 at path point `point` (an end at rest; direction
   // +1 at the start, where v' >= 0, -1 at the goal), from row `row` on (advanced by 2).
   void addRestRows(std::size_t point, double direction, Eigen::Index& row) {
