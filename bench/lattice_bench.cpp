@@ -158,7 +158,7 @@ void latticeFirstSolution(benchmark::State& state, Algorithm algorithm, int size
       search::LatticePlannerOptions options;
       options.algorithm = algorithm.algorithm;
       options.initial_epsilon = algorithm.initial_epsilon;
-      const search::LatticePlanner planner(graph, options);
+      search::LatticePlanner planner(graph, options);
       const search::PlanResult result =
           planner.solve(search::TerminationCondition::timeLimit(10.0).stopAtFirstSolution());
       expansions.push_back(static_cast<double>(result.search.expansions));
@@ -221,7 +221,7 @@ void taeaslClasses(benchmark::State& state, search::FrameAnchor anchor, int size
       search::TaeaslOptions options;
       options.anchor = anchor;
       const Clock::time_point started = Clock::now();
-      const search::TaeaslPlanner planner(graph, options);
+      search::TaeaslPlanner planner(graph, options);
       construct_ms.push_back(millisecondsSince(started));
       const search::PlanResult result =
           planner.solve(search::TerminationCondition::timeLimit(time_limit_s));

@@ -274,7 +274,7 @@ Command addPlan(CLI::App& parent, bool& json_flag) {
   command->add_flag("--refine", plan->refine,
                     "refine every solution (refine.method; docs/refinement.md)");
   command->add_option("--method", plan->method, "with --refine: overrides refine.method")
-      ->check(CLI::IsMember(search::refineMethodNames()));
+      ->check(CLI::IsMember(refine::refineMethodNames()));
   command->add_option("--plot", plan->plot,
                       "draw the map, profiles and convergence (PNG; FILE, FILE-profiles, "
                       "FILE-convergence)");
@@ -293,7 +293,7 @@ Command addRefine(CLI::App& parent, bool& json_flag) {
   command->add_option("PROBLEM", refine->problem, "problem YAML")->required();
   command->add_option("--candidate", refine->candidate, "the candidate CSV")->required();
   command->add_option("--method", refine->method, "overrides refine.method")
-      ->check(CLI::IsMember(search::refineMethodNames()));
+      ->check(CLI::IsMember(refine::refineMethodNames()));
   command->add_option("--out", refine->out, "write the refined trajectory (CSV)");
   command->add_option("--plot", refine->plot,
                       "draw the map, profiles and convergence (PNG; FILE, FILE-profiles, "

@@ -143,16 +143,19 @@ std::function<void(int, int)> primitiveProgress(CommandContext& context) {
   };
 }
 
-// The lattice planners: primitives (file, cache or generated), graph, A* / ARA* or TAEASL.
-search::PlanResult runLatticePlanner(const ProblemSpec& problem,
-                                     const search::PlanningProblem& query, PlanReportInfo& info,
-                                     CommandContext& context) {
-  if (query.goal.contains(query.start)) {
-    // Nothing to drive: no lattice (nor its start connectors) is needed.
-    search::PlanResult result;
-    search::planStartInGoal(query, result);
-    return result;
-  }
+// A planner with what it plans on (the lattice planners' primitives and graph), kept alive
+// together.
+struct PlannerSetup {
+  std::unique_ptr<search::LoadedPrimitives> primitives;
+  std::unique_ptr<search::LatticeGraph> graph;
+  std::unique_ptr<search::Planner> planner;
+};
+
+// The lattice planners: primitives (file, cache or generated), graph, A* / ARA* or TAEASL; their
+// settings into the report's `lattice` / `taeasl` sections.
+PlannerSetup setUpLatticePlanner(const ProblemSpec& problem, const search::PlanningProblem& query,
+                                 PlanReportInfo& info, CommandContext& context) {
+  PlannerSetup setup;
   search::LatticeSpec lattice;
   lattice.resolution = latticeResolution(problem, query.map->geometry());
   lattice.heading_count = problem.planner.heading_count;
@@ -161,9 +164,10 @@ search::PlanResult runLatticePlanner(const ProblemSpec& problem,
   generation.progress = primitiveProgress(context);
   generation.stop = context.stop;
   const auto load_started = std::chrono::steady_clock::now();
-  const search::LoadedPrimitives primitives = search::loadOrGeneratePrimitives(
+  setup.primitives = std::make_unique<search::LoadedPrimitives>(search::loadOrGeneratePrimitives(
       lattice, query.limits, generation,
-      problem.planner.primitives ? *problem.planner.primitives : std::filesystem::path());
+      problem.planner.primitives ? *problem.planner.primitives : std::filesystem::path()));
+  const search::LoadedPrimitives& primitives = *setup.primitives;
   const double load_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_started)
           .count();
@@ -176,7 +180,8 @@ search::PlanResult runLatticePlanner(const ProblemSpec& problem,
   if (problem.cost.kind == CostKind::kSlopeDwell) {
     graph_options.slope_dwell_alpha = problem.cost.alpha;
   }
-  const search::LatticeGraph graph(query, primitives.set, graph_options);
+  setup.graph = std::make_unique<search::LatticeGraph>(query, primitives.set, graph_options);
+  const search::LatticeGraph& graph = *setup.graph;
   if (graph.error()) throw InputError(problem.source_file.string() + ": " + *graph.error());
   checkLatticeGoal(problem, query.map->geometry());
   info.extra["lattice"] = {
@@ -192,8 +197,6 @@ search::PlanResult runLatticePlanner(const ProblemSpec& problem,
         {"generation_speed", primitives.set.generation.speed},
         {"load_ms", load_ms}}}};
 
-  const search::TerminationCondition termination =
-      search::TerminationCondition::timeLimit(problem.planner.time_limit_s).stopFlag(context.stop);
   if (problem.planner.kind == PlannerKind::kLattice) {
     search::LatticePlannerOptions options;
     options.algorithm = problem.planner.algorithm == "astar" ? search::LatticeAlgorithm::kAStar
@@ -205,7 +208,8 @@ search::PlanResult runLatticePlanner(const ProblemSpec& problem,
     info.extra["lattice"]["epsilon_step"] = options.epsilon_step;
     context.log->info("planning with the lattice ({}) for {} s", problem.planner.algorithm,
                       problem.planner.time_limit_s);
-    return search::LatticePlanner(graph, options).solve(termination);
+    setup.planner = std::make_unique<search::LatticePlanner>(graph, options);
+    return setup;
   }
   search::TaeaslOptions options;
   options.homotopy_classes = problem.planner.homotopy_classes;
@@ -215,7 +219,8 @@ search::PlanResult runLatticePlanner(const ProblemSpec& problem,
   if (problem.planner.max_signature_length) {
     options.max_signature_length = *problem.planner.max_signature_length;
   }
-  const search::TaeaslPlanner planner(graph, options);
+  auto taeasl = std::make_unique<search::TaeaslPlanner>(graph, options);
+  const search::TaeaslPlanner& planner = *taeasl;
   nlohmann::json frames = nlohmann::json::array();
   for (std::size_t k = 0; k < planner.frames().size(); ++k) {
     const search::ReferenceFrame& f = planner.frames().frames()[k];
@@ -233,7 +238,23 @@ search::PlanResult runLatticePlanner(const ProblemSpec& problem,
                           {"frames", frames}};
   context.log->info("planning with TAEASL for {} s ({} reference frames)",
                     problem.planner.time_limit_s, planner.frames().size());
-  return planner.solve(termination);
+  setup.planner = std::move(taeasl);
+  return setup;
+}
+
+// The problem's planner, ready to solve.
+PlannerSetup setUpPlanner(const ProblemSpec& problem, const search::PlanningProblem& query,
+                          PlanReportInfo& info, CommandContext& context) {
+  if (problem.planner.kind != PlannerKind::kPrm) {
+    return setUpLatticePlanner(problem, query, info, context);
+  }
+  PlannerSetup setup;
+  search::PrmOptions prm;
+  prm.seed = problem.planner.seed;
+  setup.planner = std::make_unique<search::KinodynamicPrm>(query, prm);
+  context.log->info("planning with prm for {} s (seed {}, {} model)", problem.planner.time_limit_s,
+                    prm.seed, query.vehicle->name());
+  return setup;
 }
 
 }  // namespace
@@ -262,7 +283,7 @@ std::vector<const models::Trajectory*> candidatesOf(const search::PlanResult& re
 
 // The refinement of every candidate, written to refined_<k>.csv, into the report.
 struct RefinedCandidates {
-  std::vector<search::RefinementResult> results;
+  std::vector<refine::RefinementResult> results;
   std::vector<std::optional<std::filesystem::path>> files;
   int converged = 0;
 };
@@ -270,13 +291,13 @@ struct RefinedCandidates {
 RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScene& scene,
                                    const search::PlanningProblem& query,
                                    const search::ReferenceFrames& frames,
-                                   const search::RefinementOptions& settings,
+                                   const refine::RefinementOptions& settings,
                                    const search::PlanResult& result, const PlanOptions& options,
                                    nlohmann::json& report, CommandContext& context) {
   RefinedCandidates refined;
   ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem);
   bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable()};
-  const search::CandidateRefiner refiner(query, bvp, frames, settings);
+  const refine::CandidateRefiner refiner(query, bvp, frames, settings);
   const std::vector<const models::Trajectory*> candidates = candidatesOf(result);
   double ratio_sum = 0.0;
   int ratios = 0, kept = 0;
@@ -284,7 +305,7 @@ RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScen
     if (context.stopRequested()) break;
     context.log->info("refining solution {} of {} ({} samples)", k + 1, candidates.size(),
                       candidates[k]->samples.size());
-    search::RefinementResult r = refiner.refine(*candidates[k]);
+    refine::RefinementResult r = refiner.refine(*candidates[k]);
     std::optional<std::filesystem::path> file;
     if (r.returned_candidate) {
       file = options.out_dir / ("solution_" + std::to_string(k) + ".csv");
@@ -293,7 +314,7 @@ RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScen
       models::writeTrajectoryCsv(r.verified.trajectory, *file);
     }
     context.log->info("solution {}: {} ({}, {} ms){}{}", k, ocp::solveStatusName(r.status),
-                      search::refineMethodName(r.method), r.solve_time_ms,
+                      refine::refineMethodName(r.method), r.solve_time_ms,
                       r.reason.empty() ? "" : ": ", r.reason);
     nlohmann::json& solution = report["solutions"][k];
     if (r.candidate_figures) {
@@ -314,7 +335,7 @@ RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScen
     refined.files.push_back(file);
   }
   report["refine"] = {
-      {"method", search::refineMethodName(settings.method)},
+      {"method", refine::refineMethodName(settings.method)},
       {"interval_length_m", settings.interval_length_m},
       {"min_intervals", settings.min_intervals},
       {"max_intervals", settings.max_intervals},
@@ -351,14 +372,14 @@ PlotOutcome plotPlan(const ProblemSpec& problem, const ProblemScene& scene,
   }
   if (refined) {
     for (std::size_t k = 0; k < refined->results.size(); ++k) {
-      const search::RefinementResult& r = refined->results[k];
+      const refine::RefinementResult& r = refined->results[k];
       if (refined->files[k]) {
         plot.trajectories.push_back(
             {"refined " + std::to_string(k) + " (" + ocp::solveStatusName(r.status) + ")",
              *refined->files[k], false, static_cast<int>(k)});
       }
       plot.histories.push_back(
-          {"refine " + std::to_string(k) + " (" + search::refineMethodName(r.method) + ")",
+          {"refine " + std::to_string(k) + " (" + refine::refineMethodName(r.method) + ")",
            r.history, static_cast<int>(k)});
     }
   }
@@ -388,9 +409,9 @@ std::string planSummary(const search::PlanResult& result, const PlanReportInfo& 
     out << ", re-check " << (info.checks[k].ok() ? "ok" : "VIOLATED") << ", "
         << info.files[k].string() << '\n';
     if (refined && k < refined->results.size()) {
-      const search::RefinementResult& r = refined->results[k];
+      const refine::RefinementResult& r = refined->results[k];
       out << "    refined       " << ocp::solveStatusName(r.status) << " by "
-          << search::refineMethodName(r.method) << " in " << r.solve_time_ms << " ms";
+          << refine::refineMethodName(r.method) << " in " << r.solve_time_ms << " ms";
       if (r.refined_figures) {
         out << ": cost " << r.refined_figures->cost << " (x" << r.costRatio()
             << " the candidate's), duration " << r.refined_figures->duration_s << " s, length "
@@ -412,10 +433,9 @@ PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandCon
   ensureWritableFolder(options.out_dir, "--out-dir");
   if (options.plot) ensureWritableFile(*options.plot, "--plot");
   const ProblemScene scene(problem, context);
-  const models::TerrainFollowingModel& vehicle = scene.vehicle();
   const search::PlanningProblem query = planningProblem(problem, scene);
   // Bad refine settings fail before planning.
-  std::optional<search::RefinementOptions> settings;
+  std::optional<refine::RefinementOptions> settings;
   if (options.refine) {
     settings = refinementOptions(problem, options.method);
     settings->stop = context.stop;
@@ -426,15 +446,12 @@ PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandCon
   info.time_limit_s = problem.planner.time_limit_s;
   info.seed = problem.planner.seed;
   search::PlanResult result;
-  if (problem.planner.kind == PlannerKind::kPrm) {
-    search::PrmOptions prm;
-    prm.seed = problem.planner.seed;
-    search::KinodynamicPrm planner(query, prm);
-    context.log->info("planning with prm for {} s (seed {}, {} model)",
-                      problem.planner.time_limit_s, prm.seed, vehicle.name());
-    result = planner.solve(planTermination(problem, context));
+  if (problem.planner.kind != PlannerKind::kPrm && query.goal.contains(query.start)) {
+    // Nothing to drive: no lattice (nor its start connectors) is needed.
+    search::planStartInGoal(query, result);
   } else {
-    result = runLatticePlanner(problem, query, info, context);
+    const PlannerSetup setup = setUpPlanner(problem, query, info, context);
+    result = setup.planner->solve(planTermination(problem, context));
   }
   writeSolutions(result, options.out_dir, info);
 

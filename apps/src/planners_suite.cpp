@@ -145,7 +145,7 @@ nlohmann::json latticeRows(const search::BenchmarkWorld& w, double budget_s) {
   const search::LatticeGraph graph(w.problem, primitives());
   if (graph.error()) return {{"status", "error"}, {"reason", *graph.error()}};
   nlohmann::json out;
-  const search::LatticePlanner ara(graph);
+  search::LatticePlanner ara(graph);
   const search::PlanResult a = ara.solve(search::TerminationCondition::timeLimit(budget_s));
   out["ara"] = {{"status", search::planStatusName(a.status)},
                 {"first_ms",
@@ -156,7 +156,7 @@ nlohmann::json latticeRows(const search::BenchmarkWorld& w, double budget_s) {
                 {"time_dependent", true},
                 {"expansions", a.search.expansions}};
   if (a.status == search::PlanStatus::kSolved) addCheck(out["ara"], w.problem, a.trajectory);
-  const search::TaeaslPlanner taeasl(graph);
+  search::TaeaslPlanner taeasl(graph);
   const search::PlanResult t = taeasl.solve(search::TerminationCondition::timeLimit(budget_s));
   nlohmann::json classes = nlohmann::json::array();
   bool all_ok = true;

@@ -23,19 +23,19 @@ namespace {
 
 // The largest limit, table or map violation of a refined trajectory, from the verdict's check
 // (null before a re-simulation).
-nlohmann::json refinedViolation(const search::RefinementResult& r) {
+nlohmann::json refinedViolation(const refine::RefinementResult& r) {
   if (!r.refined_figures) return nullptr;
   return ocp::largestLimitViolation(r.verdict.check).first;
 }
 
 }  // namespace
 
-search::RefinementOptions refinementOptions(const ProblemSpec& problem,
+refine::RefinementOptions refinementOptions(const ProblemSpec& problem,
                                             const std::optional<std::string>& method) {
   const RefineSpec& spec = problem.refine;
-  search::RefinementOptions options;
+  refine::RefinementOptions options;
   const std::string name = method.value_or(spec.method);
-  const std::optional<search::RefineMethod> parsed = search::parseRefineMethod(name);
+  const std::optional<refine::RefineMethod> parsed = refine::parseRefineMethod(name);
   if (!parsed) {
     throw InputError(
         (method ? std::string("--method") : problem.source_file.string() + ": refine.method") +
@@ -63,7 +63,7 @@ search::RefinementOptions refinementOptions(const ProblemSpec& problem,
   options.endpoint_tolerance_m = spec.endpoint_tolerance_m;
   options.time_limit_s = spec.time_limit_s;  // the whole refinement: solves get what is left
   options.parametric = boundaryValueOptions(problem);  // its method is set per refinement
-  if (std::optional<std::string> why = search::validateRefinementOptions(options)) {
+  if (std::optional<std::string> why = refine::validateRefinementOptions(options)) {
     throw InputError(problem.source_file.string() + ": refine: " + *why);
   }
   return options;
@@ -85,7 +85,7 @@ search::ReferenceFrames problemReferenceFrames(const ProblemSpec& problem,
                                         options);
 }
 
-nlohmann::json trajectoryFiguresJson(const search::TrajectoryFigures& f) {
+nlohmann::json trajectoryFiguresJson(const refine::TrajectoryFigures& f) {
   return {{"cost", jsonNumber(f.cost)},
           {"duration_s", jsonNumber(f.duration_s)},
           {"length_m", jsonNumber(f.length_m)},
@@ -98,14 +98,14 @@ nlohmann::json trajectoryFiguresJson(const search::TrajectoryFigures& f) {
           {"homotopy", f.homotopy}};
 }
 
-nlohmann::json refinedSolutionJson(const search::RefinementResult& r,
+nlohmann::json refinedSolutionJson(const refine::RefinementResult& r,
                                    const std::optional<std::filesystem::path>& file) {
   nlohmann::json json{{"status", ocp::solveStatusName(r.status)},
                       {"reason", r.reason},
                       {"cost_s", nullptr},
                       {"cost", nullptr},
                       {"file", file ? nlohmann::json(file->string()) : nlohmann::json(nullptr)},
-                      {"method", search::refineMethodName(r.method)},
+                      {"method", refine::refineMethodName(r.method)},
                       {"method_rule", r.method_rule},
                       {"iterations", r.iterations},
                       {"solve_time_ms", r.solve_time_ms},
@@ -126,8 +126,8 @@ nlohmann::json refinedSolutionJson(const search::RefinementResult& r,
   return json;
 }
 
-nlohmann::json refineReportJson(const search::RefinementResult& r,
-                                const search::RefinementOptions& options,
+nlohmann::json refineReportJson(const refine::RefinementResult& r,
+                                const refine::RefinementOptions& options,
                                 const std::filesystem::path& candidate_file,
                                 const std::optional<std::filesystem::path>& out) {
   const nlohmann::json history = iterationHistoryJson(r.history, false);
@@ -138,11 +138,11 @@ nlohmann::json refineReportJson(const search::RefinementResult& r,
                            {"derived_columns", derived}};
   if (r.candidate_figures) candidate.update(trajectoryFiguresJson(*r.candidate_figures));
   const bool transcription =
-      r.method == search::RefineMethod::kCollocation || r.method == search::RefineMethod::kShooting;
+      r.method == refine::RefineMethod::kCollocation || r.method == refine::RefineMethod::kShooting;
   nlohmann::json json{
       {"status", ocp::solveStatusName(r.status)},
       {"reason", r.reason},
-      {"method", search::refineMethodName(r.method)},
+      {"method", refine::refineMethodName(r.method)},
       {"method_rule", r.method_rule},
       {"iterations", r.iterations},
       {"max_iterations",
@@ -187,21 +187,21 @@ namespace {
 
 // The trajectory a refinement returns: the refined one, or the candidate when the refinement
 // ended worse than it (null when neither exists).
-const models::Trajectory* returnedTrajectory(const search::RefinementResult& r) {
+const models::Trajectory* returnedTrajectory(const refine::RefinementResult& r) {
   if (r.returned_candidate) return &r.candidate;
   return r.verified.ok ? &r.verified.trajectory : nullptr;
 }
 
-void printRefineSummary(const search::RefinementResult& result,
+void printRefineSummary(const refine::RefinementResult& result,
                         const std::optional<std::filesystem::path>& written,
                         CommandContext& context) {
   context.out << ocp::solveStatusName(result.status) << " ("
-              << search::refineMethodName(result.method) << ", " << result.iterations
+              << refine::refineMethodName(result.method) << ", " << result.iterations
               << " iterations, " << result.solve_time_ms << " ms)";
   if (!result.reason.empty()) context.out << ": " << result.reason;
   context.out << '\n';
   if (!result.method_rule.empty()) context.out << "  method      " << result.method_rule << '\n';
-  const auto line = [&](const char* name, const search::TrajectoryFigures& f) {
+  const auto line = [&](const char* name, const refine::TrajectoryFigures& f) {
     context.out << "  " << name << "cost " << f.cost << ", duration " << f.duration_s << " s, "
                 << f.length_m << " m, max |pitch| " << f.max_abs_pitch << " rad, max |roll| "
                 << f.max_abs_roll << " rad, class '" << f.homotopy << "', re-check "
@@ -222,7 +222,7 @@ void printRefineSummary(const search::RefinementResult& result,
 
 int runRefine(const RefineOptions& options, CommandContext& context) {
   ProblemSpec problem = loadProblem(options.problem);
-  search::RefinementOptions refine = refinementOptions(problem, options.method);
+  refine::RefinementOptions refine = refinementOptions(problem, options.method);
   refine.stop = context.stop;
   const models::Trajectory candidate = models::readTrajectoryCsv(options.candidate);
   // Every output is checked before the work starts.
@@ -233,10 +233,10 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
   ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem);
   bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable()};
   const search::ReferenceFrames frames = problemReferenceFrames(problem, query);
-  const search::CandidateRefiner refiner(query, bvp, frames, refine);
+  const refine::CandidateRefiner refiner(query, bvp, frames, refine);
   context.log->info("refining {} ({} samples) on the {} model", options.candidate.string(),
                     candidate.samples.size(), scene.vehicle().name());
-  const search::RefinementResult result = refiner.refine(candidate);
+  const refine::RefinementResult result = refiner.refine(candidate);
   const models::Trajectory* returned = returnedTrajectory(result);
   std::optional<std::filesystem::path> written;
   if (options.out && returned != nullptr) {
@@ -255,7 +255,7 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
   if (options.plot && !bad_candidate) {
     PlotRequest plot;
     plot.title = "refine " + options.candidate.filename().string() + " (" +
-                 search::refineMethodName(result.method) + ")";
+                 refine::refineMethodName(result.method) + ")";
     plot.limits = problem.vehicle.limits;
     plot.start = PlotPose{problem.start.x, problem.start.y, problem.start.heading};
     plot.goal = PlotPose{problem.goal.x, problem.goal.y, problem.goal.heading};
@@ -275,7 +275,7 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
       }
       plot.trajectories.push_back({"refined", refined, false, 0});
     }
-    plot.histories.push_back({search::refineMethodName(result.method), result.history, 0});
+    plot.histories.push_back({refine::refineMethodName(result.method), result.history, 0});
     plot.frames = plotFrames(frames);
     report["plots"] = writePlots(plot, scene.map(), *options.plot, context).toJson();
   }

@@ -5,13 +5,15 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <memory>
+#include <optional>
 #include <sstream>
 
 #include "terratraj/apps/benchmark_suite.hpp"
 #include "terratraj/apps/json_number.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
+#include "terratraj/refine/candidate_refiner.hpp"
 #include "terratraj/search/benchmark_world.hpp"
-#include "terratraj/search/candidate_refiner.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/lattice_graph.hpp"
 #include "terratraj/search/primitive_generator.hpp"
@@ -34,24 +36,23 @@ double duration(const models::Trajectory& t) { return t.samples.back().t - t.sam
 std::vector<models::Trajectory> plan(const std::string& planner,
                                      const search::PlanningProblem& problem, std::uint64_t seed,
                                      double budget_s) {
-  std::vector<models::Trajectory> out;
-  if (planner == "taeasl") {
-    static const search::PrimitiveSet primitives =
-        search::generatePrimitives(search::LatticeSpec{}, search::benchmarkLimits(kPitchMaxDeg))
-            .set;
-    const search::LatticeGraph graph(problem, primitives);
-    const search::TaeaslPlanner taeasl(graph);
-    const search::PlanResult r = taeasl.solve(search::TerminationCondition::timeLimit(budget_s));
-    for (const search::PlanSolution& s : r.solutions) out.push_back(s.trajectory);
-    return out;
-  }
-  search::PrmOptions options;
-  options.seed = seed;
-  search::KinodynamicPrm prm(problem, options);
+  static const search::PrimitiveSet primitives =
+      search::generatePrimitives(search::LatticeSpec{}, search::benchmarkLimits(kPitchMaxDeg)).set;
   search::TerminationCondition condition = search::TerminationCondition::timeLimit(budget_s);
   if (planner == "prm_first") condition.stopAtFirstSolution();
-  const search::PlanResult r = prm.solve(condition);
-  if (r.status == search::PlanStatus::kSolved) out.push_back(r.trajectory);
+  std::optional<search::LatticeGraph> graph;
+  std::unique_ptr<search::Planner> planning;
+  if (planner == "taeasl") {
+    graph.emplace(problem, primitives);
+    planning = std::make_unique<search::TaeaslPlanner>(*graph);
+  } else {
+    search::PrmOptions options;
+    options.seed = seed;
+    planning = std::make_unique<search::KinodynamicPrm>(problem, options);
+  }
+  const search::PlanResult r = planning->solve(condition);
+  std::vector<models::Trajectory> out;
+  for (const search::PlanSolution& s : r.solutions) out.push_back(s.trajectory);
   return out;
 }
 
@@ -65,16 +66,16 @@ std::string dumpFailure(const models::Trajectory& candidate, const std::string& 
   return file;
 }
 
-nlohmann::json refineOne(const search::BenchmarkWorld& w, const search::CandidateRefiner& refiner,
+nlohmann::json refineOne(const search::BenchmarkWorld& w, const refine::CandidateRefiner& refiner,
                          const search::ReferenceFrames& frames, const models::Trajectory& candidate,
                          const std::string& name) {
   const auto started = std::chrono::steady_clock::now();
-  const search::RefinementResult r = refiner.refine(candidate);
+  const refine::RefinementResult r = refiner.refine(candidate);
   nlohmann::json out;
   out["refine_ms"] = millisecondsSince(started);
   out["status"] = ocp::solveStatusName(r.status);
   out["reason"] = r.reason;
-  out["method"] = search::refineMethodName(r.method);
+  out["method"] = refine::refineMethodName(r.method);
   out["candidate_s"] = duration(candidate);
   out["lower_bound_s"] = w.lowerBoundTime();
   if (r.status != ocp::SolveStatus::kConverged) {
@@ -189,7 +190,7 @@ class RefineSuite final : public BenchmarkSuite {
     frame_options.anchor = {0.5 * w.map.geometry().width(), 0.5 * w.map.geometry().height()};
     const search::ReferenceFrames frames =
         search::ReferenceFrames::build(w.map, terrain::findObstacleClusters(w.map), frame_options);
-    const search::CandidateRefiner refiner(w.problem, bvp, frames);
+    const refine::CandidateRefiner refiner(w.problem, bvp, frames);
     const std::vector<models::Trajectory> found = plan(planner, w.problem, seed, budget);
     row["status"] = found.empty() ? "no candidate" : "done";
     row["candidates"] = nlohmann::json::array();

@@ -4,6 +4,8 @@
 
 namespace terratraj::ocp {
 
+bool standsStill(const VehicleState& state) { return std::abs(state.v) <= kRestSpeed; }
+
 double wrapAngle(double angle) {
   constexpr double kPi = 3.14159265358979323846;
   double wrapped = std::remainder(angle, 2.0 * kPi);

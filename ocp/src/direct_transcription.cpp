@@ -7,17 +7,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <sstream>
 #include <string>
-#include <string_view>
 
-#include "ipopt_status.hpp"
+#include "ipopt_common.hpp"
 
 namespace terratraj::ocp {
 namespace {
 
-constexpr double kIpoptInfinity = 1e19;
+using detail::kIpoptInfinity;
 // A path constraint is reported active when g > -kActiveTolerance.
 constexpr double kActiveTolerance = 1e-6;
 // Sub-steps of RK4 per interval when estimating an interval's local error.
@@ -97,23 +95,15 @@ class IpoptTranscription final : public Ipopt::TNLP {
     return true;
   }
 
-  // At an end at rest (v = omega = 0, fixed) the curvature rows +-omega - kappa_max v and the
-  // curvature-rate rows +-(omega' v - omega v') - sigma_max v^2 are identically 0 there: active
-  // with no free variable in them, they leave Ipopt no interior and drive their multipliers to
-  // 1e9 (seen on the Segway rest-to-rest problems, which then never converged). They are freed
-  // (no upper bound); the curvature at rest is held by the rest rows (omega' / v').
+  // The rows of a fixed end at rest that vanish there (detail::degenerateAtRestEnd) are freed.
   void freeDegenerateRestRows(Ipopt::Index m, Ipopt::Number* g_u) const {
-    const bool start_rest = problem_.start.v == 0.0 && problem_.start.omega == 0.0;
-    const bool goal_rest = problem_.goal.v == 0.0 && problem_.goal.omega == 0.0;
-    if (!start_rest && !goal_rest) return;
     const int last = nlp_.points() - 1;
     for (Ipopt::Index r = nlp_.defectRowCount(); r < m; ++r) {
       const ConstraintRow row = nlp_.row(r);
-      if (row.defect || !((row.point == 0 && start_rest) || (row.point == last && goal_rest))) {
-        continue;
+      if (row.defect || (row.point != 0 && row.point != last)) continue;
+      if (detail::degenerateAtRestEnd(row.point == 0 ? problem_.start : problem_.goal, row.name)) {
+        g_u[r] = detail::kIpoptInfinity;
       }
-      const std::string_view name = row.name;
-      if (name == "kappa_max" || name == "sigma_max") g_u[r] = kIpoptInfinity;
     }
   }
 
@@ -150,41 +140,51 @@ class IpoptTranscription final : public Ipopt::TNLP {
   }
 
   bool eval_f(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Number& obj) override {
-    if (!nlp_.evaluate(x)) return false;
-    obj = nlp_.objective();
-    return true;
+    return detail::guardedCallback([&] {
+      if (!nlp_.evaluate(x)) return false;
+      obj = nlp_.objective();
+      return true;
+    });
   }
   bool eval_grad_f(Ipopt::Index n, const Ipopt::Number* x, bool, Ipopt::Number* grad) override {
-    if (!nlp_.evaluate(x)) return false;
-    std::copy(nlp_.gradient().data(), nlp_.gradient().data() + n, grad);
-    return true;
+    return detail::guardedCallback([&] {
+      if (!nlp_.evaluate(x)) return false;
+      std::copy(nlp_.gradient().data(), nlp_.gradient().data() + n, grad);
+      return true;
+    });
   }
   bool eval_g(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Index m,
               Ipopt::Number* g) override {
-    if (!nlp_.evaluate(x)) return false;
-    std::copy(nlp_.constraints().data(), nlp_.constraints().data() + m, g);
-    return true;
+    return detail::guardedCallback([&] {
+      if (!nlp_.evaluate(x)) return false;
+      std::copy(nlp_.constraints().data(), nlp_.constraints().data() + m, g);
+      return true;
+    });
   }
   bool eval_jac_g(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Index, Ipopt::Index nele,
                   Ipopt::Index* rows, Ipopt::Index* cols, Ipopt::Number* values) override {
-    if (values == nullptr) {
-      std::copy(nlp_.jacobianRows().begin(), nlp_.jacobianRows().end(), rows);
-      std::copy(nlp_.jacobianCols().begin(), nlp_.jacobianCols().end(), cols);
+    return detail::guardedCallback([&] {
+      if (values == nullptr) {
+        std::copy(nlp_.jacobianRows().begin(), nlp_.jacobianRows().end(), rows);
+        std::copy(nlp_.jacobianCols().begin(), nlp_.jacobianCols().end(), cols);
+        return true;
+      }
+      if (!nlp_.evaluate(x)) return false;
+      std::copy(nlp_.jacobianValues().data(), nlp_.jacobianValues().data() + nele, values);
       return true;
-    }
-    if (!nlp_.evaluate(x)) return false;
-    std::copy(nlp_.jacobianValues().data(), nlp_.jacobianValues().data() + nele, values);
-    return true;
+    });
   }
   bool eval_h(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Number sigma, Ipopt::Index,
               const Ipopt::Number* lambda, bool, Ipopt::Index, Ipopt::Index* rows,
               Ipopt::Index* cols, Ipopt::Number* values) override {
-    if (values == nullptr) {
-      std::copy(nlp_.hessianRows().begin(), nlp_.hessianRows().end(), rows);
-      std::copy(nlp_.hessianCols().begin(), nlp_.hessianCols().end(), cols);
-      return true;
-    }
-    return nlp_.hessian(x, sigma, lambda, values);
+    return detail::guardedCallback([&] {
+      if (values == nullptr) {
+        std::copy(nlp_.hessianRows().begin(), nlp_.hessianRows().end(), rows);
+        std::copy(nlp_.hessianCols().begin(), nlp_.hessianCols().end(), cols);
+        return true;
+      }
+      return nlp_.hessian(x, sigma, lambda, values);
+    });
   }
 
   bool intermediate_callback(Ipopt::AlgorithmMode, Ipopt::Index iter, Ipopt::Number obj_value,
@@ -192,34 +192,39 @@ class IpoptTranscription final : public Ipopt::TNLP {
                              Ipopt::Number, Ipopt::Number, Ipopt::Number, Ipopt::Number alpha_pr,
                              Ipopt::Index, const Ipopt::IpoptData*,
                              Ipopt::IpoptCalculatedQuantities*) override {
-    IterationRecord record;
-    record.iteration = static_cast<int>(history_.size());
-    record.terminal_error = inf_pr;  // the defects: terminal states are bounds
-    record.cost = obj_value;
-    record.lagrangian_gradient = inf_du;
-    record.step = alpha_pr;
-    history_.push_back(record);
-    last_iteration_ = iter;
-    if (options_.time_limit_s) {
-      // Stop when the next iteration (as long as the last one) would end past the limit.
-      const double elapsed = secondsSince(started_);
-      const double step = elapsed - previous_elapsed_;
-      previous_elapsed_ = elapsed;
-      if (elapsed + step > *options_.time_limit_s) {
-        timed_out_ = true;
-        return false;
+    return detail::guardedCallback([&] {
+      IterationRecord record;
+      record.iteration = static_cast<int>(history_.size());
+      record.terminal_error = inf_pr;  // the defects: terminal states are bounds
+      record.cost = obj_value;
+      record.lagrangian_gradient = inf_du;
+      record.step = alpha_pr;
+      history_.push_back(record);
+      last_iteration_ = iter;
+      if (options_.time_limit_s) {
+        // Stop when the next iteration (as long as the last one) would end past the limit.
+        const double elapsed = secondsSince(started_);
+        const double step = elapsed - previous_elapsed_;
+        previous_elapsed_ = elapsed;
+        if (elapsed + step > *options_.time_limit_s) {
+          timed_out_ = true;
+          return false;
+        }
       }
-    }
-    return true;
+      return true;
+    });
   }
 
   void finalize_solution(Ipopt::SolverReturn, Ipopt::Index n, const Ipopt::Number* x,
                          const Ipopt::Number*, const Ipopt::Number*, Ipopt::Index m,
                          const Ipopt::Number*, const Ipopt::Number* lambda, Ipopt::Number,
                          const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
-    final_x_ = Eigen::Map<const Eigen::VectorXd>(x, n);
-    final_lambda_ = Eigen::Map<const Eigen::VectorXd>(lambda, m);
-    finalized_ = true;
+    if (x == nullptr || lambda == nullptr) return;
+    finalized_ = detail::guardedCallback([&] {
+      final_x_ = Eigen::Map<const Eigen::VectorXd>(x, n);
+      final_lambda_ = Eigen::Map<const Eigen::VectorXd>(lambda, m);
+      return true;
+    });
   }
 
   bool finalized() const { return finalized_; }
@@ -298,21 +303,17 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
   const char* scaling = options.scaling == TranscriptionScaling::kUser            ? "user-scaling"
                         : options.scaling == TranscriptionScaling::kGradientBased ? "gradient-based"
                                                                                   : "none";
-  bool ok =
-      ipopt.SetStringValue("sb", "yes") &&
-      ipopt.SetIntegerValue("print_level", options.print_level) &&
-      ipopt.SetStringValue("linear_solver", "mumps") &&
-      // AMF ordering: MUMPS's automatic choice (7) takes SCOTCH on larger KKT systems, which
-      // Debian builds with a varying random seed: the same problem then took 17 to 29
-      // iterations from run to run. AMF is deterministic and as fast on these banded systems
-      // (measured against AMD, PORD and QAMD: docs/optimal-control.md).
-      ipopt.SetIntegerValue("mumps_pivot_order", 2) &&
+  detail::IpoptBaseSettings base;
+  base.print_level = options.print_level;
+  base.max_iterations = options.max_iterations;
+  if (options.time_limit_s) base.max_cpu_time_s = *options.time_limit_s - secondsSince(started);
+  const bool ok =
+      detail::setBaseOptions(ipopt, base) &&
       ipopt.SetStringValue("hessian_approximation",
                            hessian == TranscriptionHessian::kExact ? "exact" : "limited-memory") &&
       ipopt.SetStringValue("nlp_scaling_method", scaling) &&
       ipopt.SetStringValue("mu_strategy", "adaptive") &&
       ipopt.SetStringValue("print_timing_statistics", options.print_level > 0 ? "yes" : "no") &&
-      ipopt.SetIntegerValue("max_iter", options.max_iterations) &&
       ipopt.SetNumericValue("tol", options.tolerance) &&
       // Near a kink of the terrain (bicubic is C1) the dual infeasibility can stall just
       // above tol: accept 100 x tol held for 10 iterations, with the constraints within
@@ -322,14 +323,7 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
       ipopt.SetNumericValue("constr_viol_tol", options.constraint_tolerance) &&
       ipopt.SetNumericValue("acceptable_constr_viol_tol", 100.0 * options.constraint_tolerance) &&
       ipopt.SetNumericValue("bound_relax_factor", 0.0);
-  if (options.time_limit_s) {
-    const double left = *options.time_limit_s - secondsSince(started);
-    ok = ok && ipopt.SetNumericValue("max_cpu_time", std::max(left, 1e-6));
-  }
-  // Developer hook for profiling Ipopt's settings (docs/optimal-control.md): an options file
-  // whose values override the ones above.
-  const char* tuning = std::getenv("TERRATRAJ_IPOPT_OPTIONS");
-  if (!ok || app->Initialize(tuning != nullptr ? tuning : "") != Ipopt::Solve_Succeeded) {
+  if (!ok || !detail::initializeIpopt(*app)) {
     out.reason = "Ipopt could not be set up";
     return out;
   }
@@ -342,50 +336,10 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
   } else {
     out.lambda = Eigen::VectorXd::Zero(nlp.constraintCount());
   }
-  const std::string name = out.ipopt_status;
-  switch (status) {
-    case Ipopt::Solve_Succeeded:
-    case Ipopt::Solved_To_Acceptable_Level:
-      out.status = SolveStatus::kConverged;
-      break;
-    case Ipopt::Maximum_Iterations_Exceeded:
-      out.status = SolveStatus::kMaxIterations;
-      out.reason = "max_iterations = " + std::to_string(options.max_iterations) + " reached";
-      break;
-    case Ipopt::Maximum_CpuTime_Exceeded:
-      out.status = SolveStatus::kMaxIterations;
-      out.reason = "time limit reached (Ipopt " + name + ")";
-      break;
-    case Ipopt::User_Requested_Stop:
-      out.status = adapter->timedOut() ? SolveStatus::kMaxIterations : SolveStatus::kDiverged;
-      out.reason = adapter->timedOut() ? "time limit reached" : "Ipopt stopped: " + name;
-      break;
-    case Ipopt::Infeasible_Problem_Detected:
-      out.status = SolveStatus::kInfeasible;
-      out.reason = "Ipopt: the constraints are locally infeasible (" + name + ")";
-      break;
-    case Ipopt::Restoration_Failed:
-      out.status = SolveStatus::kInfeasible;
-      out.reason =
-          "Ipopt's feasibility restoration failed (" + name + "): no feasible point near here";
-      break;
-    case Ipopt::Not_Enough_Degrees_Of_Freedom:
-      out.status = SolveStatus::kInfeasible;
-      out.reason = "too few degrees of freedom (" + name + "): more intervals are needed";
-      break;
-    case Ipopt::Diverging_Iterates:
-    case Ipopt::Search_Direction_Becomes_Too_Small:
-    case Ipopt::Error_In_Step_Computation:
-    case Ipopt::Invalid_Number_Detected:
-    case Ipopt::Feasible_Point_Found:
-      out.status = SolveStatus::kDiverged;
-      out.reason = "Ipopt returned " + name;
-      break;
-    default:
-      out.status = SolveStatus::kError;
-      out.reason = "Ipopt returned " + name;
-      break;
-  }
+  detail::IpoptOutcome outcome = detail::ipoptOutcome(status, adapter->timedOut(),
+                                                      options.max_iterations, options.time_limit_s);
+  out.status = outcome.status;
+  out.reason = std::move(outcome.reason);
   if (out.status != SolveStatus::kConverged && !nlp.message().empty()) {
     out.reason += " (last evaluation: " + nlp.message() + ")";
   }

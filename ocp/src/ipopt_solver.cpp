@@ -14,10 +14,9 @@
 #include <limits>
 #include <sstream>
 #include <string>
-#include <string_view>
 #include <vector>
 
-#include "ipopt_status.hpp"
+#include "ipopt_common.hpp"
 #include "solve_accounting.hpp"
 
 namespace terratraj::ocp {
@@ -25,11 +24,9 @@ namespace {
 
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-constexpr double kMinFinalTime = 1e-3;     // lower bound of t_f [s]
-constexpr double kIpoptInfinity = 1e19;    // Ipopt's default nlp_{lower,upper}_bound_inf
+constexpr double kMinFinalTime = 1e-3;  // lower bound of t_f [s]
+using detail::kIpoptInfinity;
 constexpr std::size_t kRecentPoints = 32;  // evaluated points kept for the history records
-// Speeds at or below this are rest [m/s] (an end at rest gets the curvature rows of its limit).
-constexpr double kRestSpeed = 1e-9;
 // The rest ends' curvature rows aim this far inside kappa_max: the check reads the curvature at
 // rest from the first moving sample, where the second-order terms of omega / v add to
 // omega' / v'.
@@ -73,8 +70,8 @@ class TrajectoryNlp final : public Ipopt::TNLP {
       const double kappa = problem.limits.kappa_max;
       if (std::isfinite(kappa) && kappa > 0.0) {
         rest_kappa_ = kRestCurvatureMargin * kappa;
-        rest_start_ = std::abs(problem.start.v) <= kRestSpeed;
-        rest_goal_ = std::abs(problem.goal.v) <= kRestSpeed;
+        rest_start_ = standsStill(problem.start);
+        rest_goal_ = standsStill(problem.goal);
       }
     }
     path_rows_ = rows_per_point_ * static_cast<int>(tau_.size());
@@ -172,7 +169,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
 
   bool eval_f(Ipopt::Index /*n*/, const Ipopt::Number* x, bool /*new_x*/,
               Ipopt::Number& obj_value) override {
-    return guarded([&] {
+    return detail::guardedCallback([&] {
       if (!update(x)) return false;
       obj_value = eval_.cost;
       return true;
@@ -181,7 +178,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
 
   bool eval_grad_f(Ipopt::Index n, const Ipopt::Number* x, bool /*new_x*/,
                    Ipopt::Number* grad_f) override {
-    return guarded([&] {
+    return detail::guardedCallback([&] {
       if (!update(x)) return false;
       std::copy(eval_.gradient.data(), eval_.gradient.data() + n, grad_f);
       return true;
@@ -190,7 +187,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
 
   bool eval_g(Ipopt::Index /*n*/, const Ipopt::Number* x, bool /*new_x*/, Ipopt::Index m,
               Ipopt::Number* g) override {
-    return guarded([&] {
+    return detail::guardedCallback([&] {
       if (!update(x)) return false;
       std::copy(values_.data(), values_.data() + m, g);
       return true;
@@ -200,7 +197,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
   bool eval_jac_g(Ipopt::Index /*n*/, const Ipopt::Number* x, bool /*new_x*/, Ipopt::Index /*m*/,
                   Ipopt::Index nele_jac, Ipopt::Index* iRow, Ipopt::Index* jCol,
                   Ipopt::Number* values) override {
-    return guarded([&] {
+    return detail::guardedCallback([&] {
       if (values == nullptr) {
         // Structure: dense, row-major.
         for (Ipopt::Index k = 0; k < nele_jac; ++k) {
@@ -221,9 +218,11 @@ class TrajectoryNlp final : public Ipopt::TNLP {
                          Ipopt::Number /*obj_value*/, const Ipopt::IpoptData* /*ip_data*/,
                          Ipopt::IpoptCalculatedQuantities* /*ip_cq*/) override {
     if (x == nullptr || lambda == nullptr) return;
-    final_x_ = Eigen::Map<const Eigen::VectorXd>(x, n);
-    final_lambda_ = Eigen::Map<const Eigen::VectorXd>(lambda, m);
-    finalized_ = true;
+    finalized_ = detail::guardedCallback([&] {
+      final_x_ = Eigen::Map<const Eigen::VectorXd>(x, n);
+      final_lambda_ = Eigen::Map<const Eigen::VectorXd>(lambda, m);
+      return true;
+    });
   }
 
   bool intermediate_callback(Ipopt::AlgorithmMode mode, Ipopt::Index iter,
@@ -233,7 +232,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
                              Ipopt::Number alpha_pr, Ipopt::Index /*ls_trials*/,
                              const Ipopt::IpoptData* ip_data,
                              Ipopt::IpoptCalculatedQuantities* /*ip_cq*/) override {
-    return guarded([&] {
+    return detail::guardedCallback([&] {
       last_iteration_ = iter;
       IterationRecord record;
       record.iteration = iter;
@@ -258,21 +257,15 @@ class TrajectoryNlp final : public Ipopt::TNLP {
   }
 
  private:
-  // At an end at rest (v = omega = 0, fixed by the controls' end values) the rows -v <= 0,
-  // +-omega - kappa_max v <= 0 and +-(omega' v - omega v') - sigma_max v^2 <= 0 are identically
-  // 0 at that path point, whatever q: active with a zero gradient, they leave Ipopt no interior
-  // and drive their multipliers up. They are freed (no upper bound); the rest rows hold the
-  // curvature there.
+  // The rows of a fixed end at rest that vanish there (detail::degenerateAtRestEnd) are freed.
   void freeDegenerateRestRows(Ipopt::Number* g_u) const {
     if (rows_per_point_ == 0) return;
     const BoundaryValueProblem& problem = model_.problem();
-    const auto at_rest = [](const VehicleState& s) { return s.v == 0.0 && s.omega == 0.0; };
     const int last = static_cast<int>(tau_.size()) - 1;
     for (const int point : {0, last}) {
-      if (!at_rest(point == 0 ? problem.start : problem.goal)) continue;
+      const VehicleState& end = point == 0 ? problem.start : problem.goal;
       for (int r = 0; r < rows_per_point_; ++r) {
-        const std::string_view name = constraints_->name(r);
-        if (name == "v_min" || name == "kappa_max" || name == "sigma_max") {
+        if (detail::degenerateAtRestEnd(end, constraints_->name(r))) {
           g_u[3 + point * rows_per_point_ + r] = kIpoptInfinity;
         }
       }
@@ -289,15 +282,6 @@ class TrajectoryNlp final : public Ipopt::TNLP {
       values_(row) = sign * p.omega_dot - direction * rest_kappa_ * p.v_dot;
       jacobian_.row(row) = sign * d.row(kOmegaDot) - direction * rest_kappa_ * d.row(kVDot);
       ++row;
-    }
-  }
-
-  template <typename Body>
-  static bool guarded(Body body) {
-    try {
-      return body();
-    } catch (...) {
-      return false;
     }
   }
 
@@ -422,28 +406,24 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
   Ipopt::OptionsList& ipopt = *app->Options();
   const ConvergenceCriteria& criteria = options.criteria;
   const double constr_viol_tol = 0.1 * std::min(criteria.position_m, criteria.heading_rad);
-  bool options_ok = ipopt.SetStringValue("sb", "yes") &&
-                    ipopt.SetIntegerValue("print_level", options.print_level) &&
-                    ipopt.SetStringValue("linear_solver", "mumps") &&
-                    // Deterministic ordering (direct_transcription.cpp says why).
-                    ipopt.SetIntegerValue("mumps_pivot_order", 2) &&
-                    ipopt.SetStringValue("hessian_approximation", "limited-memory") &&
-                    ipopt.SetIntegerValue("max_iter", options.max_iterations) &&
-                    ipopt.SetNumericValue(
-                        "tol", std::min(constr_viol_tol, 0.01 * criteria.lagrangian_gradient)) &&
-                    ipopt.SetNumericValue("constr_viol_tol", constr_viol_tol) &&
-                    ipopt.SetNumericValue("dual_inf_tol", criteria.lagrangian_gradient) &&
-                    ipopt.SetNumericValue("acceptable_constr_viol_tol", constr_viol_tol) &&
-                    ipopt.SetNumericValue("acceptable_dual_inf_tol", criteria.lagrangian_gradient);
-  if (options.time_limit_s) {
-    options_ok =
-        options_ok && ipopt.SetNumericValue("max_cpu_time", std::max(*options.time_limit_s, 1e-6));
-  }
+  detail::IpoptBaseSettings base;
+  base.print_level = options.print_level;
+  base.max_iterations = options.max_iterations;
+  base.max_cpu_time_s = options.time_limit_s;
+  const bool options_ok =
+      detail::setBaseOptions(ipopt, base) &&
+      ipopt.SetStringValue("hessian_approximation", "limited-memory") &&
+      ipopt.SetNumericValue("tol",
+                            std::min(constr_viol_tol, 0.01 * criteria.lagrangian_gradient)) &&
+      ipopt.SetNumericValue("constr_viol_tol", constr_viol_tol) &&
+      ipopt.SetNumericValue("dual_inf_tol", criteria.lagrangian_gradient) &&
+      ipopt.SetNumericValue("acceptable_constr_viol_tol", constr_viol_tol) &&
+      ipopt.SetNumericValue("acceptable_dual_inf_tol", criteria.lagrangian_gradient);
   if (!options_ok) {
     return finish(SolveStatus::kError,
                   "Ipopt rejected an option (check the criteria, print_level in [0, 12])");
   }
-  if (app->Initialize("") != Ipopt::Solve_Succeeded) {  // "": no ipopt.opt file is read
+  if (!detail::initializeIpopt(*app)) {
     return finish(SolveStatus::kError, "Ipopt could not be initialised");
   }
   const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
@@ -461,9 +441,10 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
     result.terminal_error = nlp->evaluation().terminal_error;
   }
   const std::string name = detail::ipoptStatusName(status);
-  switch (status) {
-    case Ipopt::Solve_Succeeded:
-    case Ipopt::Solved_To_Acceptable_Level: {
+  const detail::IpoptOutcome outcome =
+      detail::ipoptOutcome(status, nlp->timedOut(), options.max_iterations, options.time_limit_s);
+  switch (outcome.status) {
+    case SolveStatus::kConverged: {
       if (!final_ok) {
         return finish(SolveStatus::kDiverged,
                       "Ipopt reported " + name + " but the final point fails: " + nlp->message());
@@ -479,33 +460,18 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
            << " rad)";
       return finish(SolveStatus::kDiverged, text.str());
     }
-    case Ipopt::Maximum_Iterations_Exceeded:
-      return finish(SolveStatus::kMaxIterations,
-                    "max_iterations = " + std::to_string(options.max_iterations) + " reached");
-    case Ipopt::Maximum_CpuTime_Exceeded:
-      return finish(SolveStatus::kMaxIterations,
-                    "time limit of " + std::to_string(options.time_limit_s.value_or(0.0)) +
-                        " s reached (Ipopt max_cpu_time)");
-    case Ipopt::Infeasible_Problem_Detected:
-      return finish(SolveStatus::kInfeasible,
-                    "Ipopt: the constraints are locally infeasible (" +
-                        (final_ok ? worstConstraint(*nlp, constraints) : nlp->message()) + ")");
-    case Ipopt::User_Requested_Stop:
-      if (nlp->timedOut()) {
-        return finish(
-            SolveStatus::kMaxIterations,
-            "time limit of " + std::to_string(options.time_limit_s.value_or(0.0)) + " s reached");
-      }
-      break;
-    default:
-      break;
+    case SolveStatus::kInfeasible:
+      return finish(
+          SolveStatus::kInfeasible,
+          outcome.reason + ": " + (final_ok ? worstConstraint(*nlp, constraints) : nlp->message()));
+    case SolveStatus::kMaxIterations:
+      return finish(outcome.status, outcome.reason);
+    default: {
+      std::string reason = outcome.reason;
+      if (!nlp->message().empty()) reason += " (last evaluation: " + nlp->message() + ")";
+      return finish(outcome.status, reason);
+    }
   }
-  std::string reason = "Ipopt returned " + name;
-  if (status == Ipopt::Invalid_Number_Detected || status == Ipopt::Restoration_Failed ||
-      status == Ipopt::Error_In_Step_Computation) {
-    if (!nlp->message().empty()) reason += " (last evaluation: " + nlp->message() + ")";
-  }
-  return finish(SolveStatus::kDiverged, reason);
 }
 
 }  // namespace

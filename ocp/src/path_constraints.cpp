@@ -27,6 +27,10 @@ PathConstraints::PathConstraints(const models::VehicleLimits& limits, const Spee
   if (tables_.roll_curvature != nullptr) ++count_;
 }
 
+bool vanishesAtRest(std::string_view limit) {
+  return limit == "v_min" || limit == "kappa_max" || limit == "sigma_max";
+}
+
 const char* PathConstraints::name(int row) const {
   if (row < 14) return kRowNames[static_cast<std::size_t>(row)];
   if (row == 14 && tables_.pitch != nullptr) return kRowNames[14];

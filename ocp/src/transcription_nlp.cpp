@@ -203,11 +203,11 @@ void TranscriptionNlp::buildStructure() {
   rest_.clear();
   const BoundaryValueProblem& problem = model_->problem();
   const double kappa = problem.limits.kappa_max;
-  if (layout_.rest_curvature && problem.start.v == 0.0) {
+  if (layout_.rest_curvature && standsStill(problem.start)) {
     rest_.push_back({0, 1.0, -kappa});
     rest_.push_back({0, -1.0, -kappa});
   }
-  if (layout_.rest_curvature && problem.goal.v == 0.0) {
+  if (layout_.rest_curvature && standsStill(problem.goal)) {
     rest_.push_back({points() - 1, 1.0, kappa});
     rest_.push_back({points() - 1, -1.0, kappa});
   }

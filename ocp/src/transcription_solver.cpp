@@ -182,7 +182,8 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
     if (out.solution.result.status != SolveStatus::kConverged || !out.verified.ok) break;
     start = out.solution.asGuess();
     // A curvature rule broken at rest: the rows that hold it there.
-    if (!transcription.rest_curvature && (problem.start.v == 0.0 || problem.goal.v == 0.0) &&
+    if (!transcription.rest_curvature &&
+        (standsStill(problem.start) || standsStill(problem.goal)) &&
         (out.verdict.check.find("kappa_max") != nullptr ||
          out.verdict.check.find("sigma_max") != nullptr)) {
       transcription.rest_curvature = true;

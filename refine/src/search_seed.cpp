@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "terratraj/search/candidate_refiner.hpp"
+#include "terratraj/refine/candidate_refiner.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/planning_problem.hpp"
 #include "terratraj/search/reference_frames.hpp"
@@ -57,9 +57,9 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
   frame_options.anchor = 0.5 * (query.start.position + query.goal.position);
   const search::ReferenceFrames frames =
       search::ReferenceFrames::build(map, terrain::findObstacleClusters(map), frame_options);
-  search::RefinementOptions refine;
-  refine.method = options.method == CoreMethod::kShooting ? search::RefineMethod::kShooting
-                                                          : search::RefineMethod::kCollocation;
+  refine::RefinementOptions refine;
+  refine.method = options.method == CoreMethod::kShooting ? refine::RefineMethod::kShooting
+                                                          : refine::RefineMethod::kCollocation;
   refine.parametric = options.parametric;
   refine.transcription = options.transcription.transcription;
   refine.transcription.linear_controls = true;
@@ -67,9 +67,9 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
   refine.max_intervals = std::max(refine.min_intervals, options.transcription.max_intervals);
   refine.stop = options.stop;
   if (time_left_s) refine.time_limit_s = std::max(0.0, *time_left_s - 1e-3 * plan.planning_time_ms);
-  const search::CandidateRefiner refiner(query, problem, frames, refine);
-  search::RefinementResult r = refiner.refine(plan.solutions.front().trajectory);
-  out.method = std::string(search::refineMethodName(r.method)) + " (refining the search seed)";
+  const refine::CandidateRefiner refiner(query, problem, frames, refine);
+  refine::RefinementResult r = refiner.refine(plan.solutions.front().trajectory);
+  out.method = std::string(refine::refineMethodName(r.method)) + " (refining the search seed)";
   out.status = r.returned_candidate ? ocp::SolveStatus::kDiverged : r.status;
   out.reason = r.reason;
   out.verified = std::move(r.verified);

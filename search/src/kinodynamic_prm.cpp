@@ -219,9 +219,6 @@ PlanResult KinodynamicPrm::solve(TerminationCondition condition) {
   alive_nodes_ = 0;
   pruned_nodes_ = 0;
   const auto elapsed_ms = [&] { return condition.elapsedSeconds() * 1e3; };
-  const GoalRegion& goal = problem_->goal;
-  const double end_tolerance =
-      integrator_.settings().end_tolerance_fraction * integrator_.settings().delta_g;
 
   std::string stop_reason;
   if (condition.timeLimitSeconds() <= 0.0) {
@@ -233,110 +230,31 @@ PlanResult KinodynamicPrm::solve(TerminationCondition condition) {
     PrmNode root;
     root.state = problem_->start;
     addNode(root);
-    if (goal.contains(root.state)) {
+    if (problem_->goal.contains(root.state)) {
       // Nothing to drive (every planner): the one-row trajectory, at once.
       planStartInGoal(*problem_, result);
       result.nodes = roadmap_.size();
       result.planning_time_ms = elapsed_ms();
       return result;
     }
-    if ((root.state.position - goal.position).norm() <= options_.goal_connection_radius_m) {
+    if ((root.state.position - problem_->goal.position).norm() <=
+        options_.goal_connection_radius_m) {
       tryGoalConnection(0, elapsed_ms(), result);
     }
-    std::size_t iterations = 0;
-    while (!condition.shouldStop(iterations, best_node_ != kNoParent)) {
-      ++iterations;
-      if (roadmap_.size() >= options_.max_nodes) {
-        stop_reason = "the roadmap reached its node cap";
-        break;
-      }
-      Eigen::Vector2d milestone;
-      double milestone_speed = 0.0;
-      if (!sampleMilestone(milestone, milestone_speed)) continue;
-      const bool solved = best_node_ != kNoParent;
-      // A milestone through which no trajectory can beat the best one is not tried.
-      const double milestone_to_goal =
-          std::max(0.0, (goal.position - milestone).norm() - goal.position_tolerance) /
-          problem_->limits.v_max;
-      if (solved && bound_.toPoint(problem_->start, milestone, 0.0, problem_->limits.v_max) +
-                            milestone_to_goal >=
-                        best_cost_) {
-        continue;
-      }
-      // Candidates near the milestone, in ascending order of the bang-bang bound L-(s, m)
-      // (or of L(s0, s) + L-(s, m) once solved, in optimisation mode).
-      index_.gather(milestone, options_.gather_count, gathered_);
-      ranked_.clear();
-      for (const std::int32_t id : gathered_) {
-        const PrmNode& node = roadmap_.node(id);
-        if ((milestone - node.state.position).norm() <= end_tolerance) continue;
-        const double lower =
-            bound_.toPoint(node.state, milestone, milestone_speed, milestone_speed);
-        if (solved && node.cost + lower + milestone_to_goal >= best_cost_) continue;
-        const double key =
-            solved && options_.total_cost_order_after_solution ? node.cost + lower : lower;
-        ranked_.emplace_back(key, id);
-      }
-      const std::size_t tries = std::min(options_.candidates, ranked_.size());
-      std::partial_sort(ranked_.begin(), ranked_.begin() + static_cast<std::ptrdiff_t>(tries),
-                        ranked_.end());
-      for (std::size_t i = 0; i < tries; ++i) {
-        if (condition.timeUp()) break;
-        const std::int32_t parent = ranked_[i].second;
-        const PrmNode from = roadmap_.node(parent);
-        ExtensionRequest request;
-        request.target = milestone;
-        request.target_speed = milestone_speed;
-        request.turn_speed = milestone_speed;
-        request.max_length = options_.extension_length_m;
-        ++result.statistics.attempts;
-        const ExtensionStatus status = integrator_.extend(from.state, request, extension_);
-        if (!extensionSucceeded(status) || extension_.length <= 0.0) {
-          ++result.statistics.trapped;
-          continue;
-        }
-        const double cost = from.cost + extension_.duration;
-        // Branch and bound: L(s0, sr) + L-(sr, sf) < L+(s0, sf), else discarded as if
-        // infeasible.
-        if (cost + bound_.toGoal(extension_.end, goal) >= best_cost_) {
-          ++result.statistics.pruned;
-          continue;
-        }
-        PrmNode child;
-        child.state = extension_.end;
-        child.cost = cost;
-        child.parent = parent;
-        child.edge = request;
-        const std::int32_t id = addNode(child);
-        if (goal.contains(child.state)) {
-          recordSolution(id, nullptr, cost, elapsed_ms(), result);
-        } else if ((child.state.position - goal.position).norm() <=
-                   options_.goal_connection_radius_m) {
-          tryGoalConnection(id, elapsed_ms(), result);
-        }
-        break;
-      }
-    }
-    result.statistics.iterations = iterations;
-    if (stop_reason.empty()) {
-      std::ostringstream text;
-      if (condition.timeUp()) {
-        text << "no trajectory reached the goal region within the time limit of "
-             << condition.timeLimitSeconds() << " s";
-      } else {
-        text << "no trajectory reached the goal region within " << iterations << " iterations";
-      }
-      stop_reason = text.str();
-    }
+    stop_reason = growRoadmap(condition, result);
   }
 
   result.statistics.pruned_nodes = pruned_nodes_;
   result.nodes = roadmap_.size();
   if (best_node_ != kNoParent) {
+    // One solution, the best; applyPlanVerdict() judges it and fills the result's summary.
     result.status = PlanStatus::kSolved;
-    result.best_cost_s = best_cost_;
-    result.trajectory =
-        trajectoryTo(best_node_, has_best_edge_ ? &best_edge_ : nullptr, result.length_m);
+    PlanSolution solution;
+    solution.trajectory =
+        trajectoryTo(best_node_, has_best_edge_ ? &best_edge_ : nullptr, solution.length_m);
+    solution.cost_s = solution.search_cost_s = best_cost_;
+    solution.found_ms = result.cost_history.back().time_ms;
+    result.solutions.push_back(std::move(solution));
   } else {
     result.status = PlanStatus::kNoSolution;
     result.reason = stop_reason;
@@ -344,6 +262,101 @@ PlanResult KinodynamicPrm::solve(TerminationCondition condition) {
   applyPlanVerdict(*problem_, result);
   result.planning_time_ms = elapsed_ms();
   return result;
+}
+
+std::string KinodynamicPrm::growRoadmap(TerminationCondition& condition, PlanResult& result) {
+  const GoalRegion& goal = problem_->goal;
+  std::size_t iterations = 0;
+  while (!condition.shouldStop(iterations, best_node_ != kNoParent)) {
+    ++iterations;
+    if (roadmap_.size() >= options_.max_nodes) {
+      result.statistics.iterations = iterations;
+      return "the roadmap reached its node cap";
+    }
+    Eigen::Vector2d milestone;
+    double milestone_speed = 0.0;
+    if (!sampleMilestone(milestone, milestone_speed)) continue;
+    // A milestone through which no trajectory can beat the best one is not tried.
+    const double milestone_to_goal =
+        std::max(0.0, (goal.position - milestone).norm() - goal.position_tolerance) /
+        problem_->limits.v_max;
+    if (best_node_ != kNoParent &&
+        bound_.toPoint(problem_->start, milestone, 0.0, problem_->limits.v_max) +
+                milestone_to_goal >=
+            best_cost_) {
+      continue;
+    }
+    extendTowards(milestone, milestone_speed, milestone_to_goal, condition, result);
+  }
+  result.statistics.iterations = iterations;
+  std::ostringstream text;
+  if (condition.timeUp()) {
+    text << "no trajectory reached the goal region within the time limit of "
+         << condition.timeLimitSeconds() << " s";
+  } else {
+    text << "no trajectory reached the goal region within " << iterations << " iterations";
+  }
+  return text.str();
+}
+
+void KinodynamicPrm::extendTowards(const Eigen::Vector2d& milestone, double milestone_speed,
+                                   double milestone_to_goal, TerminationCondition& condition,
+                                   PlanResult& result) {
+  const GoalRegion& goal = problem_->goal;
+  const bool solved = best_node_ != kNoParent;
+  const double end_tolerance =
+      integrator_.settings().end_tolerance_fraction * integrator_.settings().delta_g;
+  // Candidates near the milestone, in ascending order of the bang-bang bound L-(s, m) (or of
+  // L(s0, s) + L-(s, m) once solved, in optimisation mode).
+  index_.gather(milestone, options_.gather_count, gathered_);
+  ranked_.clear();
+  for (const std::int32_t id : gathered_) {
+    const PrmNode& node = roadmap_.node(id);
+    if ((milestone - node.state.position).norm() <= end_tolerance) continue;
+    const double lower = bound_.toPoint(node.state, milestone, milestone_speed, milestone_speed);
+    if (solved && node.cost + lower + milestone_to_goal >= best_cost_) continue;
+    const double key =
+        solved && options_.total_cost_order_after_solution ? node.cost + lower : lower;
+    ranked_.emplace_back(key, id);
+  }
+  const std::size_t tries = std::min(options_.candidates, ranked_.size());
+  std::partial_sort(ranked_.begin(), ranked_.begin() + static_cast<std::ptrdiff_t>(tries),
+                    ranked_.end());
+  for (std::size_t i = 0; i < tries; ++i) {
+    if (condition.timeUp()) break;
+    const std::int32_t parent = ranked_[i].second;
+    const PrmNode from = roadmap_.node(parent);
+    ExtensionRequest request;
+    request.target = milestone;
+    request.target_speed = milestone_speed;
+    request.turn_speed = milestone_speed;
+    request.max_length = options_.extension_length_m;
+    ++result.statistics.attempts;
+    const ExtensionStatus status = integrator_.extend(from.state, request, extension_);
+    if (!extensionSucceeded(status) || extension_.length <= 0.0) {
+      ++result.statistics.trapped;
+      continue;
+    }
+    const double cost = from.cost + extension_.duration;
+    // Branch and bound: L(s0, sr) + L-(sr, sf) < L+(s0, sf), else discarded as if infeasible.
+    if (cost + bound_.toGoal(extension_.end, goal) >= best_cost_) {
+      ++result.statistics.pruned;
+      continue;
+    }
+    PrmNode child;
+    child.state = extension_.end;
+    child.cost = cost;
+    child.parent = parent;
+    child.edge = request;
+    const std::int32_t id = addNode(child);
+    const double elapsed_ms = condition.elapsedSeconds() * 1e3;
+    if (goal.contains(child.state)) {
+      recordSolution(id, nullptr, cost, elapsed_ms, result);
+    } else if ((child.state.position - goal.position).norm() <= options_.goal_connection_radius_m) {
+      tryGoalConnection(id, elapsed_ms, result);
+    }
+    return;
+  }
 }
 
 models::Trajectory KinodynamicPrm::trajectoryTo(std::int32_t id, const ExtensionRequest* final_edge,

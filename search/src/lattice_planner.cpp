@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <sstream>
+#include <limits>
+#include <optional>
+#include <vector>
 
 #include "lattice_search_core.hpp"
 
@@ -16,6 +18,138 @@ using detail::millisecondsSince;
 using detail::QueueEntry;
 using detail::SearchNode;
 
+// The ARA* search of one solve() (A* is one round at epsilon 1): the node table, OPEN, INCONS
+// and the best goal node.
+class AraStarSearch {
+ public:
+  AraStarSearch(const LatticeGraph& graph, double epsilon, SearchStatistics& stats)
+      : graph_(graph), cache_(graph), epsilon_(epsilon), stats_(stats) {
+    nodes_.reserve(1 << 15);
+    const LatticeState start = graph.start();
+    *index_.insert(graph.key(start)).first = 0;
+    nodes_.push_back({});
+    nodes_[0].state = start;
+    nodes_[0].g = 0.0;
+    open_.push({epsilon_ * graph.heuristic(start), 0.0, 0});
+  }
+
+  // improvePath: expands until the best goal's g is no more than the smallest f in OPEN (or
+  // the first goal, when the condition stops at the first solution). False when the
+  // termination condition stopped it.
+  bool improvePath(TerminationCondition& termination) {
+    while (!open_.empty()) {
+      if ((expansions_ & 15u) == 0 && termination.shouldStop(expansions_, false)) return false;
+      const QueueEntry top = open_.top();
+      if (top.g != nodes_[top.node].g || nodes_[top.node].closed_round == round_) {
+        open_.pop();
+        continue;
+      }
+      if (best_goal_g_ <= top.f) break;
+      open_.pop();
+      expand(top.node, termination.stopsAtFirstSolution());
+      if (best_goal_ >= 0 && termination.stopsAtFirstSolution()) break;
+    }
+    return true;
+  }
+
+  // The path to the best goal when it is cheaper than the last one returned here.
+  std::optional<std::vector<LatticeStep>> improvedPath() {
+    if (best_goal_ < 0 || !(best_goal_g_ < published_g_)) return std::nullopt;
+    published_g_ = best_goal_g_;
+    return detail::reconstructPath(nodes_, best_goal_);
+  }
+
+  // Next round at `epsilon`: OPEN = OPEN u INCONS with the new priorities.
+  void startRound(double epsilon) {
+    epsilon_ = epsilon;
+    ++round_;
+    std::vector<std::int32_t> members;
+    members.reserve(open_.size() + incons_.size());
+    while (!open_.empty()) {
+      const QueueEntry entry = open_.top();
+      open_.pop();
+      if (entry.g == nodes_[entry.node].g && nodes_[entry.node].closed_round != round_ - 1) {
+        members.push_back(entry.node);
+      }
+    }
+    for (std::int32_t n : incons_) {
+      nodes_[n].in_incons = false;
+      members.push_back(n);
+    }
+    incons_.clear();
+    std::sort(members.begin(), members.end());
+    members.erase(std::unique(members.begin(), members.end()), members.end());
+    std::vector<QueueEntry> entries;
+    entries.reserve(members.size());
+    for (std::int32_t n : members) {
+      entries.push_back(
+          {nodes_[n].g + epsilon_ * graph_.heuristic(nodes_[n].state), nodes_[n].g, n});
+    }
+    open_ = detail::OpenList(detail::QueueOrder(), std::move(entries));
+  }
+
+  bool foundGoal() const { return best_goal_ >= 0; }
+  // Nothing left to search: OPEN and INCONS empty and no goal reached.
+  bool idle() const { return open_.empty() && incons_.empty() && best_goal_ < 0; }
+  double epsilon() const { return epsilon_; }
+  std::size_t expansions() const { return expansions_; }
+  std::size_t nodeCount() const { return nodes_.size(); }
+
+ private:
+  // Closes `current` in this round and relaxes its successors.
+  void expand(std::int32_t current, bool stop_at_first) {
+    nodes_[current].closed_round = round_;
+    const LatticeState s = nodes_[current].state;
+    const double g = nodes_[current].g;
+    const std::uint64_t s_key = graph_.key(s);
+    ++expansions_;
+    const int edges = graph_.edgeCount(s);
+    for (int e = 0; e < edges; ++e) {
+      const LatticeState t = graph_.target(s, e);
+      if (!graph_.onLattice(t)) continue;
+      const detail::CachedEdge& edge = cache_.get(s, s_key, e, stats_, nullptr);
+      if (!std::isfinite(edge.cost)) continue;
+      const double g2 = g + edge.cost;
+      if (g2 >= best_goal_g_) continue;  // cannot lead to a better path (h >= 0)
+      const std::int32_t next = detail::findOrAddNode(index_, nodes_, graph_.key(t), t);
+      SearchNode& m = nodes_[next];
+      if (!(g2 < m.g)) continue;
+      m.g = g2;
+      m.parent = current;
+      m.edge = e;
+      ++stats_.generated;
+      if (graph_.inGoal(t)) {
+        best_goal_g_ = g2;
+        best_goal_ = next;
+        if (stop_at_first) return;
+        continue;
+      }
+      if (m.closed_round == round_) {
+        if (!m.in_incons) {
+          m.in_incons = true;
+          incons_.push_back(next);
+        }
+      } else {
+        open_.push({g2 + epsilon_ * graph_.heuristic(t), g2, next});
+      }
+    }
+  }
+
+  const LatticeGraph& graph_;
+  detail::EdgeCache cache_;
+  double epsilon_;
+  SearchStatistics& stats_;
+  std::vector<SearchNode> nodes_;
+  detail::FlatHashMap<std::int32_t> index_{1 << 15};
+  detail::OpenList open_;
+  std::vector<std::int32_t> incons_;
+  std::int32_t best_goal_ = -1;
+  double best_goal_g_ = std::numeric_limits<double>::infinity();
+  double published_g_ = std::numeric_limits<double>::infinity();
+  std::uint32_t round_ = 1;
+  std::size_t expansions_ = 0;
+};
+
 }  // namespace
 
 const char* latticeAlgorithmName(LatticeAlgorithm algorithm) {
@@ -25,7 +159,7 @@ const char* latticeAlgorithmName(LatticeAlgorithm algorithm) {
 LatticePlanner::LatticePlanner(const LatticeGraph& graph, const LatticePlannerOptions& options)
     : graph_(&graph), options_(options) {}
 
-PlanResult LatticePlanner::solve(TerminationCondition termination) const {
+PlanResult LatticePlanner::solve(TerminationCondition termination) {
   const auto started = std::chrono::steady_clock::now();
   termination.start();
   PlanResult result;
@@ -46,94 +180,19 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) const {
   const bool anytime = options_.algorithm == LatticeAlgorithm::kAraStar;
   double epsilon = anytime ? std::max(1.0, options_.initial_epsilon) : 1.0;
   const double step = options_.epsilon_step > 0.0 ? options_.epsilon_step : 0.5;
-
-  std::vector<SearchNode> nodes;
-  nodes.reserve(1 << 15);
-  detail::FlatHashMap<std::int32_t> index(1 << 15);
-  detail::EdgeCache cache(graph);
-  detail::OpenList open;
-  std::vector<std::int32_t> incons;
   SearchStatistics& stats = result.search;
-
-  const LatticeState start = graph.start();
-  *index.insert(graph.key(start)).first = 0;
-  nodes.push_back({});
-  nodes[0].state = start;
-  nodes[0].g = 0.0;
-  open.push({epsilon * graph.heuristic(start), 0.0, 0});
-
-  std::int32_t best_goal = -1;
-  double best_goal_g = std::numeric_limits<double>::infinity();
-  double published_g = std::numeric_limits<double>::infinity();
-  std::uint32_t round = 1;
+  AraStarSearch search(graph, epsilon, stats);
   bool stopped = false;
   bool proven = false;
-  std::size_t expansions = 0;
-  std::vector<LatticeStep> best_path;
   std::optional<LatticeTrajectory> best;
   std::string last_failure;
-
   while (true) {
-    // improvePath: expand until the best goal's g is no more than the smallest f in OPEN.
-    while (!open.empty()) {
-      if ((expansions & 15u) == 0 && termination.shouldStop(expansions, false)) {
-        stopped = true;
-        break;
-      }
-      const QueueEntry top = open.top();
-      if (top.g != nodes[top.node].g || nodes[top.node].closed_round == round) {
-        open.pop();
-        continue;
-      }
-      if (best_goal_g <= top.f) break;
-      open.pop();
-      const std::int32_t current = top.node;
-      nodes[current].closed_round = round;
-      const LatticeState s = nodes[current].state;
-      const double g = nodes[current].g;
-      const std::uint64_t s_key = graph.key(s);
-      ++expansions;
-      const int edges = graph.edgeCount(s);
-      for (int e = 0; e < edges; ++e) {
-        const LatticeState t = graph.target(s, e);
-        if (!graph.onLattice(t)) continue;
-        const detail::CachedEdge& edge = cache.get(s, s_key, e, stats, nullptr);
-        if (!std::isfinite(edge.cost)) continue;
-        const double g2 = g + edge.cost;
-        if (g2 >= best_goal_g) continue;  // cannot lead to a better path (h >= 0)
-        const std::int32_t next = detail::findOrAddNode(index, nodes, graph.key(t), t);
-        SearchNode& m = nodes[next];
-        if (!(g2 < m.g)) continue;
-        m.g = g2;
-        m.parent = current;
-        m.edge = e;
-        ++stats.generated;
-        if (graph.inGoal(t)) {
-          if (g2 < best_goal_g) {
-            best_goal_g = g2;
-            best_goal = next;
-            if (termination.stopsAtFirstSolution()) break;
-          }
-          continue;
-        }
-        if (m.closed_round == round) {
-          if (!m.in_incons) {
-            m.in_incons = true;
-            incons.push_back(next);
-          }
-        } else {
-          open.push({g2 + epsilon * graph.heuristic(t), g2, next});
-        }
-      }
-      if (best_goal >= 0 && termination.stopsAtFirstSolution()) break;
-    }
+    stopped = !search.improvePath(termination);
     ++stats.rounds;
     if (!stopped) stats.final_epsilon = epsilon;
-    if (best_goal >= 0 && best_goal_g < published_g) {
-      published_g = best_goal_g;
-      std::vector<LatticeStep> path = detail::reconstructPath(nodes, best_goal);
+    if (std::optional<std::vector<LatticeStep>> path = search.improvedPath()) {
       std::string why;
-      std::optional<LatticeTrajectory> trajectory = graph.trajectory(path, &why);
+      std::optional<LatticeTrajectory> trajectory = graph.trajectory(*path, &why);
       if (trajectory && (!best || trajectory->duration < best->duration)) {
         const double now = millisecondsSince(started);
         if (!result.first_solution_ms) {
@@ -142,73 +201,32 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) const {
         }
         result.cost_history.push_back({now, trajectory->duration});
         best = std::move(trajectory);
-        best_path = std::move(path);
       } else if (!trajectory) {
         last_failure = why;
       }
     }
-    if (!stopped && epsilon <= 1.0 && !(best_goal >= 0 && termination.stopsAtFirstSolution())) {
-      proven = true;
-    }
+    const bool first_only = search.foundGoal() && termination.stopsAtFirstSolution();
+    if (!stopped && epsilon <= 1.0 && !first_only) proven = true;
     if (stopped || !anytime || epsilon <= 1.0 || termination.timeUp() ||
         (best && termination.stopsAtFirstSolution())) {
       break;
     }
-    if (open.empty() && incons.empty() && best_goal < 0) break;
-    // Next round: a smaller epsilon; OPEN = OPEN u INCONS with the new priorities.
+    if (search.idle()) break;
     epsilon = std::max(1.0, epsilon - step);
-    ++round;
-    std::vector<std::int32_t> members;
-    members.reserve(open.size() + incons.size());
-    while (!open.empty()) {
-      const QueueEntry entry = open.top();
-      open.pop();
-      if (entry.g == nodes[entry.node].g && nodes[entry.node].closed_round != round - 1) {
-        members.push_back(entry.node);
-      }
-    }
-    for (std::int32_t n : incons) {
-      nodes[n].in_incons = false;
-      members.push_back(n);
-    }
-    incons.clear();
-    std::sort(members.begin(), members.end());
-    members.erase(std::unique(members.begin(), members.end()), members.end());
-    std::vector<QueueEntry> entries;
-    entries.reserve(members.size());
-    for (std::int32_t n : members) {
-      entries.push_back({nodes[n].g + epsilon * graph.heuristic(nodes[n].state), nodes[n].g, n});
-    }
-    open = detail::OpenList(detail::QueueOrder(), std::move(entries));
+    search.startRound(epsilon);
   }
 
-  stats.expansions = expansions;
-  result.nodes = nodes.size();
-  result.statistics.iterations = expansions;
-  result.statistics.attempts = stats.edge_evaluations;
-  result.statistics.trapped = stats.invalid_edges;
+  detail::recordSearchCounts(search.expansions(), search.nodeCount(), result);
   result.statistics.improvements = result.cost_history.size();
   if (best) {
-    result.status = PlanStatus::kSolved;
-    result.best_cost_s = best->duration;
-    result.trajectory = best->trajectory;
-    result.length_m = best->length;
-    PlanSolution solution;
-    solution.trajectory = std::move(best->trajectory);
-    solution.cost_s = best->duration;
-    solution.search_cost_s = best->cost;
-    solution.length_m = best->length;
+    result.status = PlanStatus::kSolved;  // applyPlanVerdict() fills the summary
+    PlanSolution solution =
+        detail::latticeSolution(std::move(*best), result.cost_history.back().time_ms);
     solution.proven_optimal = proven;
-    solution.found_ms = result.cost_history.back().time_ms;
     result.solutions.push_back(std::move(solution));
-  } else if (!last_failure.empty()) {
-    result.reason = "the path found has no trajectory: " + last_failure;
-  } else if (stopped || termination.timeUp()) {
-    std::ostringstream text;
-    text << "no path within the termination condition (" << expansions << " expansions)";
-    result.reason = text.str();
   } else {
-    result.reason = detail::exhaustedLatticeReason(graph, nodes.size());
+    result.reason = detail::noPathReason(graph, last_failure, !(stopped || termination.timeUp()),
+                                         search.expansions(), search.nodeCount());
   }
   return finish(result);
 }

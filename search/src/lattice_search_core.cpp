@@ -59,4 +59,31 @@ std::string exhaustedLatticeReason(const LatticeGraph& graph, std::size_t states
   return text.str();
 }
 
+PlanSolution latticeSolution(LatticeTrajectory&& trajectory, double found_ms) {
+  PlanSolution solution;
+  solution.trajectory = std::move(trajectory.trajectory);
+  solution.cost_s = trajectory.duration;
+  solution.search_cost_s = trajectory.cost;
+  solution.length_m = trajectory.length;
+  solution.found_ms = found_ms;
+  return solution;
+}
+
+void recordSearchCounts(std::size_t expansions, std::size_t nodes, PlanResult& result) {
+  result.search.expansions = expansions;
+  result.nodes = nodes;
+  result.statistics.iterations = expansions;
+  result.statistics.attempts = result.search.edge_evaluations;
+  result.statistics.trapped = result.search.invalid_edges;
+}
+
+std::string noPathReason(const LatticeGraph& graph, const std::string& last_failure, bool exhausted,
+                         std::size_t expansions, std::size_t nodes) {
+  if (!last_failure.empty()) return "the paths found have no trajectory: " + last_failure;
+  if (exhausted) return exhaustedLatticeReason(graph, nodes);
+  std::ostringstream text;
+  text << "no path within the termination condition (" << expansions << " expansions)";
+  return text.str();
+}
+
 }  // namespace terratraj::search::detail

@@ -102,12 +102,26 @@ inline std::int32_t findOrAddNode(FlatHashMap<std::int32_t>& index, std::vector<
   return *slot;
 }
 
-/// The path from the start to `node` as steps.
 /// Why a lattice search that exhausted every reachable state found no path: not a proof that the
 /// goal is unreachable, only that this lattice (its primitives, spacing, headings, speed) does
 /// not reach it; names the settings to change.
 std::string exhaustedLatticeReason(const LatticeGraph& graph, std::size_t states);
 
+/// The path from the start to `node` as steps.
 std::vector<LatticeStep> reconstructPath(const std::vector<SearchNode>& nodes, std::int32_t node);
+
+/// A solution from a path's trajectory found at `found_ms` [ms] (homotopy and proven_optimal
+/// are the caller's).
+PlanSolution latticeSolution(LatticeTrajectory&& trajectory, double found_ms);
+
+/// The counters every lattice search reports: expansions, nodes and the edge evaluations
+/// (`result.search` already holds the cache's counts).
+void recordSearchCounts(std::size_t expansions, std::size_t nodes, PlanResult& result);
+
+/// Why a lattice search returns no solution: the paths it found have no trajectory
+/// (`last_failure`, non-empty), every reachable state was expanded (`exhausted`:
+/// exhaustedLatticeReason), or the termination condition stopped it first.
+std::string noPathReason(const LatticeGraph& graph, const std::string& last_failure, bool exhausted,
+                         std::size_t expansions, std::size_t nodes);
 
 }  // namespace terratraj::search::detail

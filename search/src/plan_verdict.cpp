@@ -73,15 +73,6 @@ void applyPlanVerdict(const PlanningProblem& problem, PlanResult& result) {
   if (result.status != PlanStatus::kSolved) return;
   std::vector<PlanSolution> found = std::move(result.solutions);
   result.solutions.clear();
-  if (found.empty()) {
-    PlanSolution only;
-    only.trajectory = result.trajectory;
-    only.cost_s = result.best_cost_s;
-    only.search_cost_s = result.best_cost_s;
-    only.length_m = result.length_m;
-    only.found_ms = result.first_solution_ms.value_or(0.0);
-    found.push_back(std::move(only));
-  }
   const models::TrajectoryRequirements requirements = requirementsOf(problem);
   for (PlanSolution& solution : found) admitSolution(requirements, std::move(solution), result);
   concludePlan(result);

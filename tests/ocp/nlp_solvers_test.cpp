@@ -374,5 +374,35 @@ TEST_F(NlpSolvers, IterationLimitsAreReported) {
   EXPECT_NE(ceres_timed.reason.find("time limit"), std::string::npos) << ceres_timed.reason;
 }
 
+// The rows vanishesAtRest() names are exactly those identically 0 at a point standing still
+// with no yaw rate, whatever the accelerations and the attitude: both Ipopt adapters free them at
+// a fixed end at rest (left there, such a row is active with no free variable in it).
+TEST(PathConstraintsAtRest, TheVanishingRowsAreExactlyTheZeroOnes) {
+  const models::VehicleLimits limits;
+  const PathConstraints constraints(limits, SpeedTables{});
+  std::vector<double> values(static_cast<std::size_t>(constraints.count()));
+  const std::array<std::array<double, 4>, 3> cases{
+      {{0.4, -0.3, 0.1, -0.05}, {-0.2, 0.8, -0.2, 0.15}, {0.0, 0.0, 0.0, 0.0}}};
+  for (const auto& [v_dot, omega_dot, roll, pitch] : cases) {
+    PathPoint point;
+    point.v_dot = v_dot;
+    point.omega_dot = omega_dot;
+    point.attitude.attitude.roll = roll;
+    point.attitude.attitude.pitch = pitch;
+    constraints.evaluate(point, values.data(), nullptr);
+    int vanishing = 0;
+    for (int r = 0; r < constraints.count(); ++r) {
+      const bool named = vanishesAtRest(constraints.name(r));
+      vanishing += named ? 1 : 0;
+      EXPECT_EQ(named, values[static_cast<std::size_t>(r)] == 0.0)
+          << constraints.name(r) << " = " << values[static_cast<std::size_t>(r)];
+    }
+    EXPECT_EQ(vanishing, 5);  // v_min, kappa_max x 2, sigma_max x 2
+  }
+  EXPECT_TRUE(standsStill(VehicleState{1.0, 2.0, 0.3, 0.0, 0.4}));
+  EXPECT_TRUE(standsStill(VehicleState{1.0, 2.0, 0.3, -1e-12, 0.0}));
+  EXPECT_FALSE(standsStill(VehicleState{1.0, 2.0, 0.3, 1e-6, 0.0}));
+}
+
 }  // namespace
 }  // namespace terratraj::ocp

@@ -35,7 +35,7 @@ TEST(TaeaslPlanner, RoutesOnEitherSideOfABlockGetDifferentSignatures) {
   const LatticeGraph graph(world->problem, defaultPrimitives());
   TaeaslOptions options;
   options.homotopy_classes = 2;
-  const TaeaslPlanner planner(graph, options);
+  TaeaslPlanner planner(graph, options);
   ASSERT_EQ(planner.frames().size(), 1u);
   const PlanResult result = planner.solve(TerminationCondition::timeLimit(60));
   ASSERT_EQ(result.status, PlanStatus::kSolved) << result.reason;
@@ -69,7 +69,7 @@ TEST(TaeaslPlanner, EachSolutionIsTheCheapestOfItsClass) {
   options.anchor = FrameAnchor::kStart;
   options.frame_radius = 20.0;
   options.max_signature_length = 3;
-  const TaeaslPlanner planner(graph, options);
+  TaeaslPlanner planner(graph, options);
   ASSERT_EQ(planner.frames().size(), 2u);
   const PlanResult result = planner.solve(TerminationCondition::timeLimit(120));
   ASSERT_EQ(result.status, PlanStatus::kSolved) << result.reason;
@@ -92,7 +92,7 @@ TEST(TaeaslPlanner, EachSolutionIsTheCheapestOfItsClass) {
 TEST(TaeaslPlanner, NoLethalCellsMeansOneClass) {
   auto world = testing::makeWorld(terrain::TerrainKind::kHills, 128);
   const LatticeGraph graph(world->problem, defaultPrimitives());
-  const TaeaslPlanner planner(graph);
+  TaeaslPlanner planner(graph);
   EXPECT_TRUE(planner.frames().empty());
   const PlanResult result = planner.solve(TerminationCondition::timeLimit(30));
   ASSERT_EQ(result.status, PlanStatus::kSolved) << result.reason;
@@ -108,7 +108,7 @@ TEST(TaeaslPlanner, NoLethalCellsMeansOneClass) {
 TEST(TaeaslPlanner, ForestGivesSeveralCheckedClasses) {
   auto world = testing::makeWorld(terrain::TerrainKind::kForest, 256);
   const LatticeGraph graph(world->problem, defaultPrimitives());
-  const TaeaslPlanner planner(graph);
+  TaeaslPlanner planner(graph);
   EXPECT_GT(planner.frames().size(), 3u);
   const PlanResult result = planner.solve(TerminationCondition::iterationLimit(150000));
   ASSERT_EQ(result.status, PlanStatus::kSolved) << result.reason;
@@ -131,7 +131,7 @@ TEST(TaeaslPlanner, TimeLimitIsHonoured) {
   const LatticeGraph graph(world->problem, defaultPrimitives());
   TaeaslOptions options;
   options.homotopy_classes = 1000;
-  const TaeaslPlanner planner(graph, options);
+  TaeaslPlanner planner(graph, options);
   const double limit_s = 0.3;
   const PlanResult result = planner.solve(TerminationCondition::timeLimit(limit_s));
   EXPECT_GE(result.planning_time_ms, 0.8 * limit_s * 1e3);

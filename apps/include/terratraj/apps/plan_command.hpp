@@ -28,7 +28,7 @@ struct PlanOptions {
   std::optional<double> time_limit_s;                ///< overrides planner.time_limit_s [s], >= 0
   std::optional<std::uint64_t> seed;                 ///< overrides planner.seed
   std::filesystem::path out_dir = "terratraj-plan";  ///< where solution_0.csv goes
-  /// Refine every solution (search::CandidateRefiner) into `<out-dir>/refined_<k>.csv`.
+  /// Refine every solution (refine::CandidateRefiner) into `<out-dir>/refined_<k>.csv`.
   bool refine = false;
   std::optional<std::string> method;          ///< overrides refine.method
   std::optional<std::filesystem::path> plot;  ///< map PNG (and -profiles, -convergence)

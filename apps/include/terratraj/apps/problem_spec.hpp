@@ -253,7 +253,7 @@ struct PlannerSpec {
 };
 
 /// `refine`: how `plan --refine` and `refine` turn candidates into locally optimal trajectories
-/// (search::CandidateRefiner; docs/refinement.md).
+/// (refine::CandidateRefiner; docs/refinement.md).
 struct RefineSpec {
   std::string method = "auto";      ///< auto | collocation | shooting | newton | ipopt
   double interval_length_m = 0.25;  ///< one transcription interval per this much length [m], > 0

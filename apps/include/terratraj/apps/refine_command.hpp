@@ -1,7 +1,7 @@
 #pragma once
 // `terratraj refine` and the refinement half of `terratraj plan --refine`: candidates (a
 // planner's, or any path or trajectory CSV) turned into locally optimal trajectories by
-// search::CandidateRefiner, with reports that put each candidate beside its refinement
+// refine::CandidateRefiner, with reports that put each candidate beside its refinement
 // (docs/refinement.md).
 
 #include <filesystem>
@@ -12,7 +12,7 @@
 
 #include "terratraj/apps/command_context.hpp"
 #include "terratraj/apps/problem_spec.hpp"
-#include "terratraj/search/candidate_refiner.hpp"
+#include "terratraj/refine/candidate_refiner.hpp"
 #include "terratraj/search/planning_problem.hpp"
 #include "terratraj/search/reference_frames.hpp"
 
@@ -30,7 +30,7 @@ struct RefineOptions {
 /// The refinement settings a problem file describes: its `refine` section, the solver's
 /// terminal tolerances, scheme and Hessian; `method` (a RefineMethod name) overrides
 /// refine.method. Throws InputError naming the option for an unknown method.
-search::RefinementOptions refinementOptions(const ProblemSpec& problem,
+refine::RefinementOptions refinementOptions(const ProblemSpec& problem,
                                             const std::optional<std::string>& method);
 
 /// The reference frames a problem's homotopy classes are named by: TAEASL's construction with
@@ -42,19 +42,19 @@ search::ReferenceFrames problemReferenceFrames(const ProblemSpec& problem,
 /// The figures of a trajectory as JSON (cost, duration_s, length_m, max_abs_pitch_rad,
 /// max_abs_roll_rad, max_speed, min_clearance_m, check {ok, constraint_violation,
 /// violated_limits}, homotopy).
-nlohmann::json trajectoryFiguresJson(const search::TrajectoryFigures& figures);
+nlohmann::json trajectoryFiguresJson(const refine::TrajectoryFigures& figures);
 
 /// The `refined` block of a plan report's solution: status, reason, cost_s (duration), cost
 /// (the problem's cost), file, method, method_rule, iterations, solve_time_ms and the refined
 /// trajectory's figures, homotopy (after), homotopy_kept, cost_ratio.
-nlohmann::json refinedSolutionJson(const search::RefinementResult& result,
+nlohmann::json refinedSolutionJson(const refine::RefinementResult& result,
                                    const std::optional<std::filesystem::path>& file);
 
 /// The `refine` report: the contract's solve/refine keys (from the independent re-simulation)
 /// plus candidate {file, derived_columns, figures}, refined {figures}, homotopy {before, after,
 /// kept}, cost_ratio and the settings in use.
-nlohmann::json refineReportJson(const search::RefinementResult& result,
-                                const search::RefinementOptions& options,
+nlohmann::json refineReportJson(const refine::RefinementResult& result,
+                                const refine::RefinementOptions& options,
                                 const std::filesystem::path& candidate_file,
                                 const std::optional<std::filesystem::path>& out);
 

@@ -21,6 +21,13 @@ struct VehicleState {
   double omega = 0.0;
 };
 
+/// Speeds at or below this are rest [m/s].
+inline constexpr double kRestSpeed = 1e-9;
+
+/// Whether the vehicle stands still in `state` (|v| <= kRestSpeed). At an end standing still
+/// the curvature is the limit omega' / v', which the solvers hold with rows of their own.
+bool standsStill(const VehicleState& state);
+
 /// What the optimiser minimises.
 enum class CostKind {
   kTime,        ///< J = t_f (004_... eq. 16)

@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <string_view>
 
 #include "terratraj/models/attitude.hpp"
 #include "terratraj/ocp/boundary_value_problem.hpp"
@@ -38,6 +39,11 @@ struct LimitViolation {
   std::string limit;    ///< "v_max", "pitch_max", ... (empty when none is violated)
   double t = 0.0;       ///< where [s]
 };
+
+/// Whether the row named `limit` (PathConstraints::name) is identically 0 at a point standing
+/// still with no yaw rate (v = omega = 0), whatever the accelerations: v_min (-v), kappa_max
+/// (+-omega - kappa_max v) and sigma_max (+-(omega' v - omega v') - sigma_max v^2).
+bool vanishesAtRest(std::string_view limit);
 
 /// The limits of one vehicle as path constraints.
 class PathConstraints {

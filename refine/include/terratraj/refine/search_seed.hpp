@@ -1,7 +1,7 @@
 #pragma once
 // The search seed of solveSeeded(): when no Dubins word gave a verified trajectory (obstacles in
 // the way of every word, or terrain they cross badly), the kinodynamic PRM's first solution,
-// refined in its homotopy class (search::CandidateRefiner).
+// refined in its homotopy class (refine::CandidateRefiner).
 
 #include <optional>
 #include <string>

@@ -6,7 +6,7 @@
 // vehicle's turning radius (ocp::dubinsPaths), shortest first, each time-parametrised under
 // v_max, a_max and omega_max (ocp::guessFromPath); when every word crosses an impassable cell, a
 // search seed: the kinodynamic PRM's first solutions, refined in their homotopy class
-// (search::CandidateRefiner). `initial_guess: flat` keeps 004's flat-ground heuristic alone (the
+// (refine::CandidateRefiner). `initial_guess: flat` keeps 004's flat-ground heuristic alone (the
 // paper's behaviour).
 //
 // Solvers: shooting / collocation start from a seed's trajectory; the parametric methods

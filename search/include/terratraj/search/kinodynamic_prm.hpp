@@ -24,6 +24,7 @@
 #include "terratraj/search/bang_bang_bound.hpp"
 #include "terratraj/search/extension_integrator.hpp"
 #include "terratraj/search/plan_result.hpp"
+#include "terratraj/search/planner.hpp"
 #include "terratraj/search/planning_problem.hpp"
 #include "terratraj/search/prm_roadmap.hpp"
 #include "terratraj/search/spatial_grid_index.hpp"
@@ -51,7 +52,7 @@ struct PrmOptions {
 };
 
 /// The planner. Holds the roadmap of the last solve() for inspection.
-class KinodynamicPrm {
+class KinodynamicPrm final : public Planner {
  public:
   /// `problem` must outlive the planner; it is not validated here (PlanningProblem::validate).
   KinodynamicPrm(const PlanningProblem& problem, const PrmOptions& options = {});
@@ -59,7 +60,10 @@ class KinodynamicPrm {
   /// Plans from scratch (a new roadmap, the generator re-seeded) until `condition` stops it.
   /// Never throws for planning failures: they are a kNoSolution status with a reason (a time
   /// limit of 0, no solution in time, the node cap). std::bad_alloc may escape.
-  PlanResult solve(TerminationCondition condition);
+  PlanResult solve(TerminationCondition condition) override;
+
+  /// "prm".
+  const char* name() const override { return "prm"; }
 
   /// The roadmap of the last solve() (empty before the first).
   const PrmRoadmap& roadmap() const { return roadmap_; }
@@ -78,6 +82,14 @@ class KinodynamicPrm {
   bool sampleMilestone(Eigen::Vector2d& position, double& speed);
   std::int32_t addNode(const PrmNode& node);
   void tryGoalConnection(std::int32_t id, double elapsed_ms, PlanResult& result);
+  // The sampling loop of solve(): milestones until the condition stops it or the node cap;
+  // returns why it stopped (the reason when no solution was found).
+  std::string growRoadmap(TerminationCondition& condition, PlanResult& result);
+  // Extends the best-ranked node near `milestone` (speed [m/s]) that can still improve the
+  // best solution towards it (at most options_.candidates tries); `milestone_to_goal` [s] is a
+  // lower bound from the milestone to the goal.
+  void extendTowards(const Eigen::Vector2d& milestone, double milestone_speed,
+                     double milestone_to_goal, TerminationCondition& condition, PlanResult& result);
   void recordSolution(std::int32_t id, const ExtensionRequest* edge, double cost, double elapsed_ms,
                       PlanResult& result);
   void pruneNodes();

@@ -13,6 +13,7 @@
 
 #include "terratraj/search/lattice_graph.hpp"
 #include "terratraj/search/plan_result.hpp"
+#include "terratraj/search/planner.hpp"
 #include "terratraj/search/termination_condition.hpp"
 
 namespace terratraj::search {
@@ -34,7 +35,7 @@ struct LatticePlannerOptions {
 };
 
 /// A* / ARA* on one graph. One solve() at a time; the graph must outlive the planner.
-class LatticePlanner {
+class LatticePlanner final : public Planner {
  public:
   explicit LatticePlanner(const LatticeGraph& graph, const LatticePlannerOptions& options = {});
 
@@ -42,7 +43,10 @@ class LatticePlanner {
   /// optimal round finishes, or the open list empties (no path: kNoSolution with a reason). A
   /// graph with error() set gives kNoSolution with that error as the reason. Never throws
   /// (except std::bad_alloc).
-  PlanResult solve(TerminationCondition termination) const;
+  PlanResult solve(TerminationCondition termination) override;
+
+  /// "lattice".
+  const char* name() const override { return "lattice"; }
 
   const LatticePlannerOptions& options() const { return options_; }
 

@@ -26,8 +26,8 @@ void concludePlan(PlanResult& result);
 /// concludePlan().
 void planStartInGoal(const PlanningProblem& problem, PlanResult& result);
 
-/// admitSolution() for every solution of `result` (a kSolved result with an empty `solutions`
-/// list is first given one from `trajectory`), then concludePlan().
+/// admitSolution() for every solution of a kSolved `result` (every planner fills `solutions`),
+/// then concludePlan().
 void applyPlanVerdict(const PlanningProblem& problem, PlanResult& result);
 
 }  // namespace terratraj::search

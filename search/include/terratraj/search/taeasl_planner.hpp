@@ -24,6 +24,7 @@
 
 #include "terratraj/search/lattice_graph.hpp"
 #include "terratraj/search/plan_result.hpp"
+#include "terratraj/search/planner.hpp"
 #include "terratraj/search/reference_frames.hpp"
 #include "terratraj/search/termination_condition.hpp"
 
@@ -50,7 +51,7 @@ struct TaeaslOptions {
 };
 
 /// TAEASL on one graph. The graph must outlive the planner.
-class TaeaslPlanner {
+class TaeaslPlanner final : public Planner {
  public:
   /// Builds the obstacle clusters and reference frames of the graph's map (lethal layer).
   TaeaslPlanner(const LatticeGraph& graph, const TaeaslOptions& options = {});
@@ -59,7 +60,10 @@ class TaeaslPlanner {
   /// PlanResult::solutions holding up to homotopy_classes solutions in distinct classes, best
   /// first, each with its signature; kNoSolution with a reason otherwise. Never throws (except
   /// std::bad_alloc).
-  PlanResult solve(TerminationCondition termination) const;
+  PlanResult solve(TerminationCondition termination) override;
+
+  /// "taeasl".
+  const char* name() const override { return "taeasl"; }
 
   /// The frames in use (their indices name the signatures' letters).
   const ReferenceFrames& frames() const { return frames_; }

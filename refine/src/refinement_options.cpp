@@ -1,11 +1,11 @@
-#include "terratraj/search/refinement_options.hpp"
+#include "terratraj/refine/refinement_options.hpp"
 
 #include <array>
 #include <cmath>
 #include <sstream>
 #include <utility>
 
-namespace terratraj::search {
+namespace terratraj::refine {
 namespace {
 
 constexpr std::array<std::pair<RefineMethod, const char*>, 5> kMethodNames{{
@@ -117,4 +117,4 @@ RefineMethod chooseRefineMethod(const RefinementOptions& options, double length_
   return RefineMethod::kIpopt;
 }
 
-}  // namespace terratraj::search
+}  // namespace terratraj::refine

@@ -36,13 +36,13 @@
 #include "terratraj/ocp/direct_transcription.hpp"
 #include "terratraj/ocp/solve_result.hpp"
 #include "terratraj/ocp/trajectory_verifier.hpp"
+#include "terratraj/refine/refinement_options.hpp"
 #include "terratraj/search/planning_problem.hpp"
 #include "terratraj/search/reference_frames.hpp"
-#include "terratraj/search/refinement_options.hpp"
 #include "terratraj/search/trajectory_checker.hpp"
 #include "terratraj/terrain/clearance_map.hpp"
 
-namespace terratraj::search {
+namespace terratraj::refine {
 
 /// The figures of one trajectory (a candidate or its refinement).
 struct TrajectoryFigures {
@@ -56,7 +56,7 @@ struct TrajectoryFigures {
   double min_clearance_m = 0.0;
   /// The independent re-check: for a candidate against the planning problem (its goal region),
   /// for a refinement the verdict's (the exact goal within the solver's tolerances).
-  CheckReport check;
+  models::CheckReport check;
   std::string homotopy;  ///< signature over the refiner's reference frames
 };
 
@@ -109,8 +109,8 @@ class CandidateRefiner {
 
   /// `problem` (map, vehicle, limits, tables, start, goal region), `bvp` (its boundary-value
   /// form: exact start and goal, cost, tables) and `frames` must outlive the refiner.
-  CandidateRefiner(const PlanningProblem& problem, const ocp::BoundaryValueProblem& bvp,
-                   const ReferenceFrames& frames, const RefinementOptions& options = {});
+  CandidateRefiner(const search::PlanningProblem& problem, const ocp::BoundaryValueProblem& bvp,
+                   const search::ReferenceFrames& frames, const RefinementOptions& options = {});
 
   /// Refines one candidate. Never throws (except std::bad_alloc): a candidate that cannot be
   /// used (a single point, NaN, off the map) gives kError with the sample at fault; a solver
@@ -132,7 +132,7 @@ class CandidateRefiner {
   }
 
   const RefinementOptions& options() const { return options_; }
-  const ReferenceFrames& frames() const { return *frames_; }
+  const search::ReferenceFrames& frames() const { return *frames_; }
 
  private:
   // The start already meets the goal: the one-row trajectory at the start, judged into `out`;
@@ -167,13 +167,13 @@ class CandidateRefiner {
   // The map with every cell farther than corridor_radius_m from the candidate made lethal.
   terrain::ElevationMap corridorMap(const models::Trajectory& candidate) const;
 
-  const PlanningProblem* problem_;
+  const search::PlanningProblem* problem_;
   const ocp::BoundaryValueProblem* bvp_;
-  const ReferenceFrames* frames_;
+  const search::ReferenceFrames* frames_;
   RefinementOptions options_;
   terrain::ClearanceMap clearance_;
   models::TrajectoryRequirements candidate_requirements_;
   models::TrajectoryRequirements refined_requirements_;
 };
 
-}  // namespace terratraj::search
+}  // namespace terratraj::refine

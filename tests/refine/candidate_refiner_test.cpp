@@ -8,15 +8,20 @@
 #include <string>
 #include <vector>
 
-#include "lattice_fixtures.hpp"
-#include "search_fixtures.hpp"
-#include "terratraj/search/candidate_refiner.hpp"
+#include "../search/lattice_fixtures.hpp"
+#include "../search/search_fixtures.hpp"
+#include "terratraj/refine/candidate_refiner.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/trajectory_checker.hpp"
 #include "terratraj/terrain/obstacle_clusters.hpp"
 
 namespace terratraj::search {
 namespace {
+
+using refine::CandidateRefiner;
+using refine::RefinementOptions;
+using refine::RefinementResult;
+using refine::RefineMethod;
 
 using ::testing::HasSubstr;
 using testing::TestWorld;

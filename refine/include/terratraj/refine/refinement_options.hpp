@@ -11,7 +11,7 @@
 #include "terratraj/ocp/boundary_value_solver.hpp"
 #include "terratraj/ocp/direct_transcription.hpp"
 
-namespace terratraj::search {
+namespace terratraj::refine {
 
 /// How a candidate is refined.
 enum class RefineMethod {
@@ -114,4 +114,4 @@ RefineMethod chooseRefineMethod(const RefinementOptions& options, double length_
                                 double min_clearance_m, int curvature_sign_changes,
                                 std::string& rule);
 
-}  // namespace terratraj::search
+}  // namespace terratraj::refine

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <vector>
 
-#include "terratraj/search/candidate_refiner.hpp"
+#include "terratraj/refine/candidate_refiner.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
 
-namespace terratraj::search {
+namespace terratraj::refine {
 namespace {
 
 // Shortcutting: the candidate is resampled this often [m] and a straight segment may skip at
@@ -89,4 +89,4 @@ std::vector<Eigen::Vector2d> CandidateRefiner::shortcutPath(
   return out;
 }
 
-}  // namespace terratraj::search
+}  // namespace terratraj::refine

@@ -1,4 +1,4 @@
-#include "terratraj/search/candidate_refiner.hpp"
+#include "terratraj/refine/candidate_refiner.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,7 +13,10 @@
 #include "terratraj/ocp/transcription_model.hpp"
 #include "terratraj/ocp/transcription_solver.hpp"
 
-namespace terratraj::search {
+namespace terratraj::refine {
+
+using search::PlanningProblem;
+using search::ReferenceFrames;
 namespace {
 
 using models::TrajectoryColumn;
@@ -531,4 +534,4 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
   }
 }
 
-}  // namespace terratraj::search
+}  // namespace terratraj::refine

@@ -1,0 +1,31 @@
+#pragma once
+// Planner: the one interface of terratraj's planners (the kinodynamic PRM, A* / ARA* on the
+// state lattice, TAEASL), in the sense of OMPL's ompl::base::Planner. A planner is built on one
+// problem (a PlanningProblem, or a LatticeGraph over one); solve() plans until its termination
+// condition stops it and returns every solution in PlanResult::solutions, best first, each
+// judged by the contract's verdict (applyPlanVerdict, plan_verdict.hpp). Callers see one
+// result shape whatever the planner: `solutions` (one for the PRM and A* / ARA*, up to
+// homotopy_classes for TAEASL), with `trajectory` the first's.
+
+#include "terratraj/search/plan_result.hpp"
+#include "terratraj/search/termination_condition.hpp"
+
+namespace terratraj::search {
+
+/// A planner of one problem. Planners are not thread-safe; one solve() at a time.
+class Planner {
+ public:
+  virtual ~Planner() = default;
+
+  /// The contract's name of the planner ("prm", "lattice", "taeasl").
+  virtual const char* name() const = 0;
+
+  /// Plans until `termination` stops it (its iteration budget counts the planner's own
+  /// iterations: PRM samples, lattice expansions). kSolved with at least one solution that
+  /// passes the verdict, else kNoSolution with a reason. May be called again: each call plans
+  /// from the planner's initial state with the same seed (the same result for the same
+  /// condition). Never throws for planning failures (std::bad_alloc may escape).
+  virtual PlanResult solve(TerminationCondition termination) = 0;
+};
+
+}  // namespace terratraj::search
