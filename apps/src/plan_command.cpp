@@ -14,6 +14,7 @@
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
+#include "terratraj/apps/problem_translation.hpp"
 #include "terratraj/apps/refine_command.hpp"
 #include "terratraj/apps/solve_command.hpp"
 #include "terratraj/apps/vehicle_factory.hpp"
@@ -38,34 +39,6 @@ std::string formatNumber(double value) {
   return text.str();
 }
 
-// The planner's view of the problem file's start and goal.
-search::PlannerState startState(const ProblemSpec& problem) {
-  const BoundaryState& s = problem.start;
-  if (s.v == 0.0 && s.omega != 0.0) {
-    throw InputError(problem.source_file.string() +
-                     ": start.omega: the planners cannot turn in place: omega must be 0 when "
-                     "v = 0 (got " +
-                     formatNumber(s.omega) + " rad/s)");
-  }
-  search::PlannerState state;
-  state.position = {s.x, s.y};
-  state.heading = s.heading;
-  state.v = s.v;
-  state.curvature = s.v > 0.0 ? s.omega / s.v : 0.0;
-  return state;
-}
-
-search::GoalRegion goalRegion(const ProblemSpec& problem) {
-  search::GoalRegion goal;
-  goal.position = {problem.goal.x, problem.goal.y};
-  goal.heading = problem.goal.heading;
-  goal.v = problem.goal.v;
-  goal.position_tolerance = problem.planner.goal_position_tolerance_m;
-  goal.heading_tolerance = problem.planner.goal_heading_tolerance;
-  goal.speed_tolerance = problem.planner.goal_speed_tolerance;
-  return goal;
-}
-
 }  // namespace
 
 namespace {
@@ -78,12 +51,13 @@ double latticeResolution(const ProblemSpec& problem, const terrain::GridGeometry
 
 }  // namespace
 
-void checkLatticeGoal(const ProblemSpec& problem, const terrain::GridGeometry& geometry) {
+void checkLatticeGoal(const ProblemSpec& problem, const search::PlanningProblem& query) {
   search::LatticeSpec lattice;
-  lattice.resolution = latticeResolution(problem, geometry);
+  lattice.resolution = latticeResolution(problem, query.map->geometry());
   lattice.heading_count = problem.planner.heading_count;
-  const Eigen::Vector2d start(problem.start.x, problem.start.y);
-  const Eigen::Vector2d goal(problem.goal.x, problem.goal.y);
+  const Eigen::Vector2d& start = query.start.position;
+  const Eigen::Vector2d& goal = query.goal.position;
+  const double goal_heading = query.goal.heading;
   const Eigen::Vector2d cells = (goal - start) / lattice.resolution;
   const Eigen::Vector2d nearest =
       start + lattice.resolution * Eigen::Vector2d(std::round(cells.x()), std::round(cells.y()));
@@ -96,8 +70,8 @@ void checkLatticeGoal(const ProblemSpec& problem, const terrain::GridGeometry& g
                      " m");
   }
   const double heading_tolerance = problem.planner.goal_heading_tolerance;
-  const double heading_gap = std::abs(search::wrapAngle(
-      problem.goal.heading - lattice.headingAngle(lattice.nearestHeading(problem.goal.heading))));
+  const double heading_gap = std::abs(
+      search::wrapAngle(goal_heading - lattice.headingAngle(lattice.nearestHeading(goal_heading))));
   if (heading_gap > heading_tolerance) {
     throw InputError(problem.source_file.string() +
                      ": planner.goal_heading_tolerance: " + formatNumber(heading_tolerance) +
@@ -117,12 +91,6 @@ void writeSolutions(const search::PlanResult& result, const std::filesystem::pat
     info.files.push_back(file);
     info.checks.push_back(result.solutions[k].check);
   }
-}
-
-search::FrameAnchor parseAnchor(const std::string& name) {
-  if (name == "start") return search::FrameAnchor::kStart;
-  if (name == "midpoint") return search::FrameAnchor::kMidpoint;
-  return search::FrameAnchor::kMapCenter;
 }
 
 // The planner's time limit, iteration budget (planner.max_iterations) and the SIGINT flag.
@@ -151,10 +119,11 @@ struct PlannerSetup {
   std::unique_ptr<search::Planner> planner;
 };
 
-// The lattice planners: primitives (file, cache or generated), graph, A* / ARA* or TAEASL; their
-// settings into the report's `lattice` / `taeasl` sections.
+// The lattice planners: primitives (file, cache or generated), graph, A* / ARA* or TAEASL (on
+// the run's reference `frames`); their settings into the report's `lattice` / `taeasl` sections.
 PlannerSetup setUpLatticePlanner(const ProblemSpec& problem, const search::PlanningProblem& query,
-                                 PlanReportInfo& info, CommandContext& context) {
+                                 const search::ReferenceFrames& frames, PlanReportInfo& info,
+                                 CommandContext& context) {
   PlannerSetup setup;
   search::LatticeSpec lattice;
   lattice.resolution = latticeResolution(problem, query.map->geometry());
@@ -183,7 +152,7 @@ PlannerSetup setUpLatticePlanner(const ProblemSpec& problem, const search::Plann
   setup.graph = std::make_unique<search::LatticeGraph>(query, primitives.set, graph_options);
   const search::LatticeGraph& graph = *setup.graph;
   if (graph.error()) throw InputError(problem.source_file.string() + ": " + *graph.error());
-  checkLatticeGoal(problem, query.map->geometry());
+  checkLatticeGoal(problem, query);
   info.extra["lattice"] = {
       {"resolution_m", lattice.resolution},
       {"heading_count", lattice.heading_count},
@@ -198,11 +167,7 @@ PlannerSetup setUpLatticePlanner(const ProblemSpec& problem, const search::Plann
         {"load_ms", load_ms}}}};
 
   if (problem.planner.kind == PlannerKind::kLattice) {
-    search::LatticePlannerOptions options;
-    options.algorithm = problem.planner.algorithm == "astar" ? search::LatticeAlgorithm::kAStar
-                                                             : search::LatticeAlgorithm::kAraStar;
-    options.initial_epsilon = problem.planner.initial_epsilon;
-    options.epsilon_step = problem.planner.epsilon_step;
+    const search::LatticePlannerOptions options = latticePlannerOptions(problem);
     info.extra["lattice"]["algorithm"] = search::latticeAlgorithmName(options.algorithm);
     info.extra["lattice"]["initial_epsilon"] = options.initial_epsilon;
     info.extra["lattice"]["epsilon_step"] = options.epsilon_step;
@@ -211,23 +176,16 @@ PlannerSetup setUpLatticePlanner(const ProblemSpec& problem, const search::Plann
     setup.planner = std::make_unique<search::LatticePlanner>(graph, options);
     return setup;
   }
-  search::TaeaslOptions options;
-  options.homotopy_classes = problem.planner.homotopy_classes;
-  options.frame_radius = problem.planner.frame_radius_m;
-  options.anchor = parseAnchor(problem.planner.frame_anchor);
-  options.heuristic_weight = problem.planner.heuristic_weight;
-  if (problem.planner.max_signature_length) {
-    options.max_signature_length = *problem.planner.max_signature_length;
-  }
-  auto taeasl = std::make_unique<search::TaeaslPlanner>(graph, options);
+  const search::TaeaslOptions options = taeaslOptions(problem);
+  auto taeasl = std::make_unique<search::TaeaslPlanner>(graph, frames, options);
   const search::TaeaslPlanner& planner = *taeasl;
-  nlohmann::json frames = nlohmann::json::array();
+  nlohmann::json frames_json = nlohmann::json::array();
   for (std::size_t k = 0; k < planner.frames().size(); ++k) {
     const search::ReferenceFrame& f = planner.frames().frames()[k];
-    frames.push_back({{"name", search::HomotopySignature::frameName(static_cast<int>(k))},
-                      {"cluster", f.cluster},
-                      {"start", {f.start.x(), f.start.y()}},
-                      {"end", {f.end.x(), f.end.y()}}});
+    frames_json.push_back({{"name", search::HomotopySignature::frameName(static_cast<int>(k))},
+                           {"cluster", f.cluster},
+                           {"start", {f.start.x(), f.start.y()}},
+                           {"end", {f.end.x(), f.end.y()}}});
   }
   info.extra["taeasl"] = {{"homotopy_classes", options.homotopy_classes},
                           {"frame_radius_m", options.frame_radius},
@@ -235,18 +193,19 @@ PlannerSetup setUpLatticePlanner(const ProblemSpec& problem, const search::Plann
                           {"anchor", {planner.anchorPosition().x(), planner.anchorPosition().y()}},
                           {"heuristic_weight", options.heuristic_weight},
                           {"max_signature_length", planner.maxSignatureLength()},
-                          {"frames", frames}};
+                          {"frames", frames_json}};
   context.log->info("planning with TAEASL for {} s ({} reference frames)",
                     problem.planner.time_limit_s, planner.frames().size());
   setup.planner = std::move(taeasl);
   return setup;
 }
 
-// The problem's planner, ready to solve.
+// The problem's planner, ready to solve (TAEASL on the run's reference `frames`).
 PlannerSetup setUpPlanner(const ProblemSpec& problem, const search::PlanningProblem& query,
-                          PlanReportInfo& info, CommandContext& context) {
+                          const search::ReferenceFrames& frames, PlanReportInfo& info,
+                          CommandContext& context) {
   if (problem.planner.kind != PlannerKind::kPrm) {
-    return setUpLatticePlanner(problem, query, info, context);
+    return setUpLatticePlanner(problem, query, frames, info, context);
   }
   PlannerSetup setup;
   search::PrmOptions prm;
@@ -258,19 +217,6 @@ PlannerSetup setUpPlanner(const ProblemSpec& problem, const search::PlanningProb
 }
 
 }  // namespace
-
-search::PlanningProblem planningProblem(const ProblemSpec& problem, const ProblemScene& scene) {
-  search::PlanningProblem query(scene.map(), scene.vehicle());
-  query.limits = problem.vehicle.limits;
-  query.start = startState(problem);
-  query.goal = goalRegion(problem);
-  query.pitch_table = scene.pitchTable();
-  query.roll_curvature_table = scene.rollCurvatureTable();
-  if (const std::optional<std::string> error = query.validate()) {
-    throw InputError(problem.source_file.string() + ": " + *error);
-  }
-  return query;
-}
 
 namespace {
 
@@ -295,8 +241,7 @@ RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScen
                                    const search::PlanResult& result, const PlanOptions& options,
                                    nlohmann::json& report, CommandContext& context) {
   RefinedCandidates refined;
-  ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem);
-  bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable()};
+  const ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem, scene);
   const refine::CandidateRefiner refiner(query, bvp, frames, settings);
   const std::vector<const models::Trajectory*> candidates = candidatesOf(result);
   double ratio_sum = 0.0;
@@ -360,8 +305,8 @@ PlotOutcome plotPlan(const ProblemSpec& problem, const ProblemScene& scene,
   PlotRequest plot;
   plot.title = std::string("plan (") + info.planner + ")" + (refined ? " and refine" : "");
   plot.limits = problem.vehicle.limits;
-  plot.start = PlotPose{problem.start.x, problem.start.y, problem.start.heading};
-  plot.goal = PlotPose{problem.goal.x, problem.goal.y, problem.goal.heading};
+  plot.start = PlotPose{scene.start().x, scene.start().y, scene.start().heading};
+  plot.goal = PlotPose{scene.goal().x, scene.goal().y, scene.goal().heading};
   plot.tolerance_position_m = problem.solver.tolerance_position_m;
   for (std::size_t k = 0; k < info.files.size(); ++k) {
     std::string label = "candidate " + std::to_string(k);
@@ -428,7 +373,8 @@ std::string planSummary(const search::PlanResult& result, const PlanReportInfo& 
 
 }  // namespace
 
-PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandContext& context) {
+PlanRun executePlan(const ProblemSpec& problem, const PlanOptions& options,
+                    CommandContext& context) {
   // Every output is checked before the work starts.
   ensureWritableFolder(options.out_dir, "--out-dir");
   if (options.plot) ensureWritableFile(*options.plot, "--plot");
@@ -441,6 +387,11 @@ PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandCon
     settings->stop = context.stop;
   }
 
+  // The reference frames (TAEASL's classes, the refinements' and the plot's), built once.
+  const bool with_frames = problem.planner.kind == PlannerKind::kTaeasl || settings || options.plot;
+  const search::ReferenceFrames frames =
+      with_frames ? problemReferenceFrames(problem, query) : search::ReferenceFrames();
+
   PlanReportInfo info;
   info.planner = plannerKindName(problem.planner.kind);
   info.time_limit_s = problem.planner.time_limit_s;
@@ -450,16 +401,13 @@ PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandCon
     // Nothing to drive: no lattice (nor its start connectors) is needed.
     search::planStartInGoal(query, result);
   } else {
-    const PlannerSetup setup = setUpPlanner(problem, query, info, context);
+    const PlannerSetup setup = setUpPlanner(problem, query, frames, info, context);
     result = setup.planner->solve(planTermination(problem, context));
   }
   writeSolutions(result, options.out_dir, info);
 
   PlanRun run;
   run.report = planReportJson(result, info);
-  // The classes of the refinements and of the plot: TAEASL's frames, for every planner.
-  const search::ReferenceFrames frames =
-      settings || options.plot ? problemReferenceFrames(problem, query) : search::ReferenceFrames();
   std::optional<RefinedCandidates> refined;
   if (settings && result.status == search::PlanStatus::kSolved) {
     refined = refineCandidates(problem, scene, query, frames, *settings, result, options,
@@ -477,7 +425,7 @@ PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandCon
   nlohmann::json saved = run.report;
   saved["version"] = kTerratrajVersion;
   saved["command"] = options.refine ? "plan --refine" : "plan";
-  saved["problem"] = problemJson(problem);
+  saved["problem"] = problemJson(problem, scene);
   const std::filesystem::path report_file = options.out_dir / "report.json";
   writeJsonFile(saved, report_file);
   run.report["report_file"] = report_file.string();

@@ -7,6 +7,7 @@
 #include "terratraj/apps/plan_command.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
+#include "terratraj/apps/problem_translation.hpp"
 #include "terratraj/apps/refine_command.hpp"
 #include "terratraj/apps/solve_command.hpp"
 #include "terratraj/apps/terrain_commands.hpp"
@@ -89,7 +90,7 @@ nlohmann::json attitudeJson(const models::AttitudeResult& result) {
 
 }  // namespace
 
-nlohmann::json problemJson(const ProblemSpec& problem) {
+nlohmann::json problemJson(const ProblemSpec& problem, const ProblemScene& scene) {
   const VehicleLimits& l = problem.vehicle.limits;
   return {
       {"file", problem.source_file.string()},
@@ -107,9 +108,9 @@ nlohmann::json problemJson(const ProblemSpec& problem) {
         {"tables",
          {{"pitch", optionalPath(problem.vehicle.tables.pitch)},
           {"roll_curvature", optionalPath(problem.vehicle.tables.roll_curvature)}}}}},
-      {"start", stateJson(problem.start)},
-      {"goal", stateJson(problem.goal)},
-      {"pose_frame", problem.pose_frame == terrain::CoordinateFrame::kWorld ? "world" : "local"},
+      {"start", stateJson(scene.start())},
+      {"goal", stateJson(scene.goal())},
+      {"pose_frame", "local"},  // start and goal as resolved on the map
       {"cost", {{"kind", costKindName(problem.cost.kind)}, {"alpha", problem.cost.alpha}}},
       {"solver",
        {{"method", solverMethodName(problem.solver.method)},
@@ -149,7 +150,7 @@ void checkForEveryCommand(const ProblemSpec& problem, const ProblemScene& scene)
   });
   as("plan and refine", [&] { (void)planningProblem(problem, scene); });
   if (problem.planner.kind != PlannerKind::kPrm) {
-    as("plan", [&] { checkLatticeGoal(problem, scene.map().geometry()); });
+    as("plan", [&] { checkLatticeGoal(problem, planningProblem(problem, scene)); });
   }
   as("refine and plan --refine", [&] { (void)refinementOptions(problem, std::nullopt); });
 }
@@ -165,7 +166,7 @@ int runCheck(const CheckOptions& options, CommandContext& context) {
   const terrain::TerrainStatistics stats = terrain::computeTerrainStatistics(map);
   if (context.json) {
     nlohmann::json json{{"status", "ok"},
-                        {"problem", problemJson(problem)},
+                        {"problem", problemJson(problem, scene)},
                         {"start_attitude", attitudeJson(start)},
                         {"goal_attitude", attitudeJson(goal)},
                         {"terrain", terrainStatisticsJson(stats)}};
@@ -174,12 +175,12 @@ int runCheck(const CheckOptions& options, CommandContext& context) {
     context.out << options.problem.string() << ": ok\n"
                 << "  vehicle    " << vehicleModelName(problem.vehicle.model) << ", v_max "
                 << problem.vehicle.limits.v_max << " m/s\n"
-                << "  start      (" << problem.start.x << ", " << problem.start.y << ") m, heading "
-                << problem.start.heading << " rad (local frame); pitch "
+                << "  start      (" << scene.start().x << ", " << scene.start().y << ") m, heading "
+                << scene.start().heading << " rad (local frame); pitch "
                 << start.attitude.pitch * kDegreesPerRadian << " deg, roll "
                 << start.attitude.roll * kDegreesPerRadian << " deg\n"
-                << "  goal       (" << problem.goal.x << ", " << problem.goal.y << ") m, heading "
-                << problem.goal.heading << " rad (local frame); pitch "
+                << "  goal       (" << scene.goal().x << ", " << scene.goal().y << ") m, heading "
+                << scene.goal().heading << " rad (local frame); pitch "
                 << goal.attitude.pitch * kDegreesPerRadian << " deg, roll "
                 << goal.attitude.roll * kDegreesPerRadian << " deg\n"
                 << "  cost       " << costKindName(problem.cost.kind) << ", solver "

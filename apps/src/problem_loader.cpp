@@ -557,16 +557,17 @@ ProblemSpec loadProblem(const std::filesystem::path& yaml_file) {
   return parseProblem(readProblemFile(yaml_file), yaml_file.parent_path(), yaml_file.string());
 }
 
-void resolvePosesOnTerrain(ProblemSpec& problem, const terrain::ElevationMap& map) {
+ResolvedPoses resolvePoses(const ProblemSpec& problem, const terrain::ElevationMap& map) {
   const std::string file = problem.source_file.string();
   const bool from_world = problem.pose_frame == terrain::CoordinateFrame::kWorld;
   const Eigen::Vector2d start = localPoseOnMap(file, "start", problem.start, from_world, map);
   const Eigen::Vector2d goal = localPoseOnMap(file, "goal", problem.goal, from_world, map);
-  problem.start.x = start.x();
-  problem.start.y = start.y();
-  problem.goal.x = goal.x();
-  problem.goal.y = goal.y();
-  problem.pose_frame = terrain::CoordinateFrame::kLocal;
+  ResolvedPoses poses{problem.start, problem.goal};
+  poses.start.x = start.x();
+  poses.start.y = start.y();
+  poses.goal.x = goal.x();
+  poses.goal.y = goal.y();
+  return poses;
 }
 
 }  // namespace terratraj::apps

@@ -13,11 +13,9 @@
 namespace terratraj::apps {
 namespace {
 
-terrain::ElevationMap loadAndResolve(ProblemSpec& problem, const CommandContext& context) {
+terrain::ElevationMap loadTerrain(const ProblemSpec& problem, const CommandContext& context) {
   context.log->info("{}: loading the terrain", problem.source_file.string());
-  terrain::ElevationMap map = terrain::loadTerrain(problem.terrain);
-  resolvePosesOnTerrain(problem, map);
-  return map;
+  return terrain::loadTerrain(problem.terrain);
 }
 
 constexpr double kDegreesPerRadian = 57.29577951308232;
@@ -31,10 +29,9 @@ std::string angleText(double radians) {
 // The vehicle at rest at a boundary pose must hold the pitch and roll limits: the trajectory's
 // first (or last) row is there.
 void checkAttitudeLimits(const models::AttitudeResult& attitude, const char* which,
-                         const ProblemSpec& problem) {
+                         const BoundaryState& s, const ProblemSpec& problem) {
   const VehicleLimits& l = problem.vehicle.limits;
   const std::string where = problem.source_file.string() + ": " + which;
-  const BoundaryState& s = std::string(which) == "start" ? problem.start : problem.goal;
   std::ostringstream pose;
   pose << " at (" << s.x << ", " << s.y << ") m, heading " << angleText(s.heading);
   if (std::abs(attitude.attitude.pitch) > l.pitch_max) {
@@ -53,8 +50,10 @@ void checkAttitudeLimits(const models::AttitudeResult& attitude, const char* whi
 
 }  // namespace
 
-ProblemScene::ProblemScene(ProblemSpec& problem, const CommandContext& context)
-    : map_(loadAndResolve(problem, context)), surface_(map_, terrain::Interpolation::kBicubic) {
+ProblemScene::ProblemScene(const ProblemSpec& problem, const CommandContext& context)
+    : map_(loadTerrain(problem, context)),
+      poses_(resolvePoses(problem, map_)),
+      surface_(map_, terrain::Interpolation::kBicubic) {
   if (problem.vehicle.tables.pitch) {
     pitch_table_ = models::readPitchTable(*problem.vehicle.tables.pitch);
   }
@@ -62,10 +61,10 @@ ProblemScene::ProblemScene(ProblemSpec& problem, const CommandContext& context)
     roll_table_ = models::readRollCurvatureTable(*problem.vehicle.tables.roll_curvature);
   }
   vehicle_ = makeTerrainFollowingModel(problem.vehicle.model, surface_);
-  start_attitude_ = restingAttitude(*vehicle_, problem.start, "start", problem);
-  goal_attitude_ = restingAttitude(*vehicle_, problem.goal, "goal", problem);
-  checkAttitudeLimits(start_attitude_, "start", problem);
-  checkAttitudeLimits(goal_attitude_, "goal", problem);
+  start_attitude_ = restingAttitude(*vehicle_, poses_.start, "start", problem);
+  goal_attitude_ = restingAttitude(*vehicle_, poses_.goal, "goal", problem);
+  checkAttitudeLimits(start_attitude_, "start", poses_.start, problem);
+  checkAttitudeLimits(goal_attitude_, "goal", poses_.goal, problem);
 }
 
 }  // namespace terratraj::apps

@@ -11,6 +11,7 @@
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
+#include "terratraj/apps/problem_translation.hpp"
 #include "terratraj/apps/solve_command.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
@@ -29,61 +30,6 @@ nlohmann::json refinedViolation(const refine::RefinementResult& r) {
 }
 
 }  // namespace
-
-refine::RefinementOptions refinementOptions(const ProblemSpec& problem,
-                                            const std::optional<std::string>& method) {
-  const RefineSpec& spec = problem.refine;
-  refine::RefinementOptions options;
-  const std::string name = method.value_or(spec.method);
-  const std::optional<refine::RefineMethod> parsed = refine::parseRefineMethod(name);
-  if (!parsed) {
-    throw InputError(
-        (method ? std::string("--method") : problem.source_file.string() + ": refine.method") +
-        ": unknown method '" + name + "' (auto, collocation, shooting, newton, ipopt)");
-  }
-  options.method = *parsed;
-  options.interval_length_m = spec.interval_length_m;
-  options.min_intervals = spec.min_intervals;
-  options.max_intervals = spec.max_intervals;
-  options.min_clearance_m = spec.min_clearance_m;
-  options.parametric_max_length_m = spec.parametric_max_length_m;
-  options.parametric_min_clearance_m = spec.parametric_min_clearance_m;
-  // The solver section's transcription settings (scheme, Hessian, effort, mesh refinement),
-  // with refine's own iteration and time limits.
-  ProblemSpec collocation = problem;
-  collocation.solver.method = SolverMethod::kCollocation;
-  options.transcription = transcriptionOptions(collocation);
-  options.transcription.intervals = options.min_intervals;  // set per candidate by its length
-  options.transcription.max_iterations = spec.max_iterations;
-  options.transcription.linear_controls = true;
-  options.limit_margin = spec.limit_margin;
-  options.speed_margin = spec.speed_margin;
-  options.transcription.model.control_effort_weight = spec.control_effort;
-  options.coarse_interval_length_m = spec.coarse_interval_length_m;
-  options.endpoint_tolerance_m = spec.endpoint_tolerance_m;
-  options.time_limit_s = spec.time_limit_s;  // the whole refinement: solves get what is left
-  options.parametric = boundaryValueOptions(problem);  // its method is set per refinement
-  if (std::optional<std::string> why = refine::validateRefinementOptions(options)) {
-    throw InputError(problem.source_file.string() + ": refine: " + *why);
-  }
-  return options;
-}
-
-search::ReferenceFrames problemReferenceFrames(const ProblemSpec& problem,
-                                               const search::PlanningProblem& query) {
-  const terrain::GridGeometry& g = query.map->geometry();
-  search::ReferenceFrameOptions options;
-  options.frame_radius = problem.planner.frame_radius_m;
-  if (problem.planner.frame_anchor == "start") {
-    options.anchor = query.start.position;
-  } else if (problem.planner.frame_anchor == "midpoint") {
-    options.anchor = 0.5 * (query.start.position + query.goal.position);
-  } else {
-    options.anchor = {0.5 * g.width(), 0.5 * g.height()};
-  }
-  return search::ReferenceFrames::build(*query.map, terrain::findObstacleClusters(*query.map),
-                                        options);
-}
 
 nlohmann::json trajectoryFiguresJson(const refine::TrajectoryFigures& f) {
   return {{"cost", jsonNumber(f.cost)},
@@ -230,8 +176,7 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
   if (options.plot) ensureWritableFile(*options.plot, "--plot");
   const ProblemScene scene(problem, context);
   const search::PlanningProblem query = planningProblem(problem, scene);
-  ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem);
-  bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable()};
+  const ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem, scene);
   const search::ReferenceFrames frames = problemReferenceFrames(problem, query);
   const refine::CandidateRefiner refiner(query, bvp, frames, refine);
   context.log->info("refining {} ({} samples) on the {} model", options.candidate.string(),
@@ -257,8 +202,8 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
     plot.title = "refine " + options.candidate.filename().string() + " (" +
                  refine::refineMethodName(result.method) + ")";
     plot.limits = problem.vehicle.limits;
-    plot.start = PlotPose{problem.start.x, problem.start.y, problem.start.heading};
-    plot.goal = PlotPose{problem.goal.x, problem.goal.y, problem.goal.heading};
+    plot.start = PlotPose{scene.start().x, scene.start().y, scene.start().heading};
+    plot.goal = PlotPose{scene.goal().x, scene.goal().y, scene.goal().heading};
     plot.tolerance_position_m = refine.parametric.criteria.position_m;
     const std::filesystem::path derived =
         options.plot->parent_path() / (options.plot->stem().string() + "-candidate.csv");
@@ -284,7 +229,7 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
     nlohmann::json saved = report;
     saved["version"] = kTerratrajVersion;
     saved["command"] = "refine";
-    saved["problem"] = problemJson(problem);
+    saved["problem"] = problemJson(problem, scene);
     writeJsonFile(saved, report_file);
     report["report_file"] = report_file.string();
   }

@@ -11,6 +11,7 @@
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
+#include "terratraj/apps/problem_translation.hpp"
 #include "terratraj/apps/vehicle_factory.hpp"
 #include "terratraj/apps/verdict_json.hpp"
 #include "terratraj/models/segway_lookups.hpp"
@@ -24,49 +25,7 @@
 #include "terratraj/terrain/input_error.hpp"
 
 namespace terratraj::apps {
-namespace {
-
-ocp::VehicleState toState(const BoundaryState& s) { return {s.x, s.y, s.heading, s.v, s.omega}; }
-
-std::optional<ocp::BoundaryValueMethod> parametricMethod(SolverMethod method) {
-  switch (method) {
-    case SolverMethod::kNewton:
-      return ocp::BoundaryValueMethod::kNewton;
-    case SolverMethod::kNewtonFd:
-      return ocp::BoundaryValueMethod::kNewtonFd;
-    case SolverMethod::kIpopt:
-      return ocp::BoundaryValueMethod::kIpopt;
-    case SolverMethod::kCeres:
-      return ocp::BoundaryValueMethod::kCeres;
-    case SolverMethod::kAuto:
-    case SolverMethod::kShooting:
-    case SolverMethod::kCollocation:
-      return std::nullopt;
-  }
-  return std::nullopt;
-}
-
-refine::CoreMethod coreMethod(SolverMethod method) {
-  switch (method) {
-    case SolverMethod::kAuto:
-      return refine::CoreMethod::kAuto;
-    case SolverMethod::kNewton:
-      return refine::CoreMethod::kNewton;
-    case SolverMethod::kNewtonFd:
-      return refine::CoreMethod::kNewtonFd;
-    case SolverMethod::kIpopt:
-      return refine::CoreMethod::kIpopt;
-    case SolverMethod::kCeres:
-      return refine::CoreMethod::kCeres;
-    case SolverMethod::kShooting:
-      return refine::CoreMethod::kShooting;
-    case SolverMethod::kCollocation:
-      return refine::CoreMethod::kCollocation;
-  }
-  return refine::CoreMethod::kAuto;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 nlohmann::json iterationHistoryJson(const std::vector<ocp::IterationRecord>& history,
                                     bool heading_error) {
@@ -118,69 +77,6 @@ void printVerifiedTrajectory(std::ostream& out, const ocp::VerifiedTrajectory& v
 }
 
 }  // namespace
-
-ocp::BoundaryValueProblem boundaryValueProblem(const ProblemSpec& problem) {
-  ocp::BoundaryValueProblem bvp;
-  bvp.start = toState(problem.start);
-  bvp.goal = toState(problem.goal);
-  bvp.cost.kind = problem.cost.kind == CostKind::kSlopeDwell ? ocp::CostKind::kSlopeDwell
-                                                             : ocp::CostKind::kTime;
-  bvp.cost.alpha = problem.cost.alpha;
-  bvp.orders = {problem.solver.yaw_rate_order, problem.solver.speed_order};
-  bvp.limits = problem.vehicle.limits;
-  return bvp;
-}
-
-ocp::BoundaryValueOptions boundaryValueOptions(const ProblemSpec& problem) {
-  ocp::BoundaryValueOptions options;
-  // Direct transcription starts from the parametric solution: newton's settings then.
-  options.method =
-      parametricMethod(problem.solver.method).value_or(ocp::BoundaryValueMethod::kNewton);
-  options.criteria = {problem.solver.tolerance_position_m, problem.solver.tolerance_heading_rad,
-                      problem.solver.tolerance_lagrangian_gradient};
-  options.max_iterations = problem.solver.max_iterations;
-  options.time_limit_s = problem.solver.time_limit_s;
-  return options;
-}
-
-bool isTranscriptionMethod(SolverMethod method) {
-  return method == SolverMethod::kAuto || method == SolverMethod::kShooting ||
-         method == SolverMethod::kCollocation;
-}
-
-ocp::DirectTranscriptionOptions transcriptionOptions(const ProblemSpec& problem) {
-  const SolverSpec& solver = problem.solver;
-  ocp::DirectTranscriptionOptions options;
-  options.scheme = solver.method == SolverMethod::kShooting
-                       ? ocp::TranscriptionScheme::kMultipleShooting
-                   : solver.scheme == "trapezoidal" ? ocp::TranscriptionScheme::kTrapezoidal
-                                                    : ocp::TranscriptionScheme::kHermiteSimpson;
-  options.shooting_controls = solver.shooting_controls == "constant"
-                                  ? ocp::ShootingControls::kPiecewiseConstant
-                                  : ocp::ShootingControls::kPiecewiseLinear;
-  if (solver.hessian == "exact") options.hessian = ocp::TranscriptionHessian::kExact;
-  if (solver.hessian == "limited_memory") {
-    options.hessian = ocp::TranscriptionHessian::kLimitedMemory;
-  }
-  options.intervals = solver.intervals.value_or(0);  // 0: by the seed's length (solveSeeded)
-  // Piecewise-linear controls on Hermite-Simpson intervals: |v'| <= a_max and |omega'| hold
-  // between the points too (the quadratic interpolation of a bang-bang control overshoots).
-  options.linear_controls = true;
-  options.max_iterations = solver.transcription_max_iterations.value_or(5 * solver.max_iterations);
-  options.time_limit_s = solver.time_limit_s;
-  options.refinement.max_rounds = solver.mesh_refinement_rounds;
-  options.refinement.tolerance = solver.mesh_refinement_tolerance;
-  options.model.control_effort_weight = solver.control_effort;
-  if (problem.vehicle.model == VehicleModelKind::kSegwayRmp) {
-    options.model.segway = ocp::SegwayConstraints{models::defaultSegwayLookups()};
-  }
-  ocp::DirectTranscriptionOptions checked = options;
-  checked.intervals = std::max(checked.intervals, 1);  // 0 (auto) is resolved per seed
-  if (std::optional<std::string> why = ocp::validateTranscriptionOptions(checked)) {
-    throw InputError(problem.source_file.string() + ": solver: " + *why);
-  }
-  return options;
-}
 
 nlohmann::json transcriptionReportJson(const ocp::TranscriptionSolution& solution,
                                        const ocp::VerifiedTrajectory& v,
@@ -260,15 +156,15 @@ namespace {
 
 // `--plot` of solve: the re-simulated trajectory on the map, its profiles and the iterations.
 nlohmann::json plotSolve(const SolveOptions& options, const ProblemSpec& problem,
-                         const terrain::ElevationMap& map, const ocp::VerifiedTrajectory& verified,
+                         const ProblemScene& scene, const ocp::VerifiedTrajectory& verified,
                          const std::vector<ocp::IterationRecord>& history,
                          const std::string& method, CommandContext& context) {
   const std::filesystem::path& png = *options.plot;
   PlotRequest plot;
   plot.title = "solve (" + method + ")";
   plot.limits = problem.vehicle.limits;
-  plot.start = PlotPose{problem.start.x, problem.start.y, problem.start.heading};
-  plot.goal = PlotPose{problem.goal.x, problem.goal.y, problem.goal.heading};
+  plot.start = PlotPose{scene.start().x, scene.start().y, scene.start().heading};
+  plot.goal = PlotPose{scene.goal().x, scene.goal().y, scene.goal().heading};
   plot.tolerance_position_m = problem.solver.tolerance_position_m;
   if (verified.ok) {
     std::filesystem::path csv =
@@ -277,41 +173,12 @@ nlohmann::json plotSolve(const SolveOptions& options, const ProblemSpec& problem
     plot.trajectories.push_back({method, csv, false, 0});
   }
   plot.histories.push_back({method, history, 0});
-  return writePlots(plot, map, png, context).toJson();
+  return writePlots(plot, scene.map(), png, context).toJson();
 }
 
 }  // namespace
 
 namespace {
-
-// The seeded solve's settings from the problem file.
-refine::SeededSolveOptions seededOptions(const ProblemSpec& problem, const SolveOptions& options,
-                                         const terrain::ElevationMap& map,
-                                         const std::optional<terrain::ClearanceMap>& clearance,
-                                         CommandContext& context) {
-  refine::SeededSolveOptions seeded;
-  seeded.method = coreMethod(problem.solver.method);
-  seeded.initial_guess = problem.solver.initial_guess == InitialGuessKind::kFlat
-                             ? refine::InitialGuessKind::kFlat
-                             : refine::InitialGuessKind::kAuto;
-  seeded.parametric = boundaryValueOptions(problem);
-  if (isTranscriptionMethod(problem.solver.method)) {
-    seeded.transcription.transcription = transcriptionOptions(problem);
-    seeded.transcription.max_intervals =
-        std::max(problem.solver.max_intervals, problem.solver.intervals.value_or(0));
-    if (clearance) {
-      seeded.transcription.transcription.model.clearance = {&*clearance,
-                                                            *problem.solver.min_clearance_m};
-    }
-  }
-  seeded.ipopt_max_iterations = problem.solver.ipopt_max_iterations;
-  seeded.search_seed = problem.planner.seed;
-  seeded.time_limit_s = problem.solver.time_limit_s;
-  seeded.stop = context.stop;
-  (void)map;
-  (void)options;
-  return seeded;
-}
 
 // The report of a seeded solve: the contract's keys, the verdict, the attempts, and the
 // solver's own details (the parametric controls, or the transcription's mesh and rounds).
@@ -417,12 +284,11 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
   const ProblemScene scene(problem, context);
   const terrain::ElevationMap& map = scene.map();
   const models::TerrainFollowingModel& vehicle = scene.vehicle();
-  ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem);
-  bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable()};
+  const ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem, scene);
   std::optional<terrain::ClearanceMap> clearance;
   if (problem.solver.min_clearance_m) clearance.emplace(map);
   const refine::SeededSolveOptions seeded =
-      seededOptions(problem, options, map, clearance, context);
+      seededSolveOptions(problem, clearance ? &*clearance : nullptr, context.stop);
   refine::SeededSolution solution;
   if (options.guess) {
     // A user's guess: the transcription from it alone.
@@ -464,7 +330,7 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
   }
   nlohmann::json report = seededReportJson(solution, seeded, problem);
   if (options.plot) {
-    report["plots"] = plotSolve(options, problem, map, solution.verified, solution.history,
+    report["plots"] = plotSolve(options, problem, scene, solution.verified, solution.history,
                                 solution.method, context);
   }
   if (context.stopRequested()) report["stopped_by"] = "interrupt";

@@ -291,26 +291,38 @@ const char* frameAnchorName(FrameAnchor anchor) {
   return "unknown";
 }
 
-TaeaslPlanner::TaeaslPlanner(const LatticeGraph& graph, const TaeaslOptions& options)
-    : graph_(&graph), options_(options) {
-  const PlanningProblem& problem = graph.problem();
+Eigen::Vector2d frameAnchorPosition(FrameAnchor anchor, const PlanningProblem& problem) {
   const terrain::GridGeometry& geometry = problem.map->geometry();
-  switch (options.anchor) {
-    case FrameAnchor::kMapCenter:
-      anchor_ = {0.5 * geometry.width(), 0.5 * geometry.height()};
-      break;
+  switch (anchor) {
     case FrameAnchor::kStart:
-      anchor_ = problem.start.position;
-      break;
+      return problem.start.position;
     case FrameAnchor::kMidpoint:
-      anchor_ = 0.5 * (problem.start.position + problem.goal.position);
+      return 0.5 * (problem.start.position + problem.goal.position);
+    case FrameAnchor::kMapCenter:
       break;
   }
-  ReferenceFrameOptions frame_options;
-  frame_options.anchor = anchor_;
-  frame_options.frame_radius = options.frame_radius;
-  frames_ = ReferenceFrames::build(*problem.map, terrain::findObstacleClusters(*problem.map),
-                                   frame_options);
+  return {0.5 * geometry.width(), 0.5 * geometry.height()};
+}
+
+ReferenceFrames taeaslReferenceFrames(const PlanningProblem& problem, FrameAnchor anchor,
+                                      double frame_radius) {
+  ReferenceFrameOptions options;
+  options.anchor = frameAnchorPosition(anchor, problem);
+  options.frame_radius = frame_radius;
+  return ReferenceFrames::build(*problem.map, terrain::findObstacleClusters(*problem.map), options);
+}
+
+TaeaslPlanner::TaeaslPlanner(const LatticeGraph& graph, const TaeaslOptions& options)
+    : TaeaslPlanner(graph,
+                    taeaslReferenceFrames(graph.problem(), options.anchor, options.frame_radius),
+                    options) {}
+
+TaeaslPlanner::TaeaslPlanner(const LatticeGraph& graph, ReferenceFrames frames,
+                             const TaeaslOptions& options)
+    : graph_(&graph),
+      options_(options),
+      anchor_(frameAnchorPosition(options.anchor, graph.problem())),
+      frames_(std::move(frames)) {
   max_signature_length_ = options.max_signature_length > 0
                               ? options.max_signature_length
                               : 2 * static_cast<int>(frames_.size()) + 2;

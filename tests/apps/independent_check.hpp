@@ -91,19 +91,19 @@ inline std::string independentCheck(const std::filesystem::path& csv,
   }
   if (!t.samples.empty()) {
     const models::TrajectorySample& first = t.samples.front();
-    if (std::hypot(first.x - problem.start.x, first.y - problem.start.y) > 1e-6) {
+    if (std::hypot(first.x - scene.start().x, first.y - scene.start().y) > 1e-6) {
       broken << "does not start at the start; ";
     }
     const models::TrajectorySample& last = t.samples.back();
-    if (std::hypot(last.x - problem.goal.x, last.y - problem.goal.y) > goal.position_m) {
-      broken << "ends " << std::hypot(last.x - problem.goal.x, last.y - problem.goal.y)
+    if (std::hypot(last.x - scene.goal().x, last.y - scene.goal().y) > goal.position_m) {
+      broken << "ends " << std::hypot(last.x - scene.goal().x, last.y - scene.goal().y)
              << " m from the goal; ";
     }
     if (goal.heading_rad < pi &&
-        std::abs(wrap(last.heading - problem.goal.heading)) > goal.heading_rad) {
+        std::abs(wrap(last.heading - scene.goal().heading)) > goal.heading_rad) {
       broken << "ends with the wrong heading; ";
     }
-    if (std::abs(last.v - problem.goal.v) > goal.speed) broken << "ends at the wrong speed; ";
+    if (std::abs(last.v - scene.goal().v) > goal.speed) broken << "ends at the wrong speed; ";
   }
   return broken.str();
 }

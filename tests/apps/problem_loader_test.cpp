@@ -261,7 +261,7 @@ TEST(ProblemLoader, EnumNamesRoundTrip) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// resolvePosesOnTerrain.
+// resolvePoses.
 
 // A flat 20 x 10 map of 0.5 m cells (10 m x 5 m), its world origin at (1000, 2000).
 terrain::ElevationMap smallMap() {
@@ -282,9 +282,9 @@ ProblemSpec problemAt(double start_x, double start_y, double goal_x, double goal
   return parseProblem(yaml, "/proj", "problem.yaml");
 }
 
-std::string resolveError(ProblemSpec& problem, const terrain::ElevationMap& map) {
+std::string resolveError(const ProblemSpec& problem, const terrain::ElevationMap& map) {
   try {
-    resolvePosesOnTerrain(problem, map);
+    (void)resolvePoses(problem, map);
   } catch (const InputError& error) {
     return error.what();
   }
@@ -294,10 +294,10 @@ std::string resolveError(ProblemSpec& problem, const terrain::ElevationMap& map)
 
 TEST(ProblemPoses, LocalPosesInsideAreKept) {
   const terrain::ElevationMap map = smallMap();
-  ProblemSpec p = problemAt(1.0, 1.0, 10.0, 5.0);  // the goal on the north-east corner
-  resolvePosesOnTerrain(p, map);
-  EXPECT_DOUBLE_EQ(p.start.x, 1.0);
-  EXPECT_DOUBLE_EQ(p.goal.y, 5.0);
+  const ProblemSpec p = problemAt(1.0, 1.0, 10.0, 5.0);  // the goal on the north-east corner
+  const ResolvedPoses poses = resolvePoses(p, map);
+  EXPECT_DOUBLE_EQ(poses.start.x, 1.0);
+  EXPECT_DOUBLE_EQ(poses.goal.y, 5.0);
   EXPECT_EQ(p.pose_frame, terrain::CoordinateFrame::kLocal);
 }
 
@@ -313,18 +313,17 @@ TEST(ProblemPoses, OutsideTheMap) {
 
 TEST(ProblemPoses, WorldFrameIsConvertedToLocal) {
   const terrain::ElevationMap map = smallMap();
-  ProblemSpec p = problemAt(1001.0, 2002.5, 1009.0, 2004.0, "world");
+  const ProblemSpec p = problemAt(1001.0, 2002.5, 1009.0, 2004.0, "world");
   EXPECT_EQ(p.pose_frame, terrain::CoordinateFrame::kWorld);
-  resolvePosesOnTerrain(p, map);
-  EXPECT_EQ(p.pose_frame, terrain::CoordinateFrame::kLocal);
+  const ResolvedPoses poses = resolvePoses(p, map);
   EXPECT_EQ(p.terrain.frame, terrain::CoordinateFrame::kWorld);
-  EXPECT_NEAR(p.start.x, 1.0, kTol);
-  EXPECT_NEAR(p.start.y, 2.5, kTol);
-  EXPECT_NEAR(p.goal.x, 9.0, kTol);
-  EXPECT_NEAR(p.goal.y, 4.0, kTol);
-  // A second call does not convert again.
-  resolvePosesOnTerrain(p, map);
-  EXPECT_NEAR(p.start.x, 1.0, kTol);
+  EXPECT_NEAR(poses.start.x, 1.0, kTol);
+  EXPECT_NEAR(poses.start.y, 2.5, kTol);
+  EXPECT_NEAR(poses.goal.x, 9.0, kTol);
+  EXPECT_NEAR(poses.goal.y, 4.0, kTol);
+  // The problem keeps its poses as the file gives them: resolving again gives the same.
+  EXPECT_DOUBLE_EQ(p.start.x, 1001.0);
+  EXPECT_NEAR(resolvePoses(p, map).start.x, 1.0, kTol);
 }
 
 TEST(ProblemPoses, WorldFrameOutsideLeavesProblemUnchanged) {

@@ -36,14 +36,10 @@ struct PlanOptions {
 
 class ProblemScene;
 
-/// The planner's query for a loaded problem: map, vehicle, limits, tables, start (the planners
-/// cannot turn in place: InputError for v = 0 with omega != 0), goal region; InputError naming
-/// the key when it is invalid.
-search::PlanningProblem planningProblem(const ProblemSpec& problem, const ProblemScene& scene);
-
 /// For the lattice planners: throws InputError naming the tolerance key when no lattice
-/// position or heading lies in the goal region (planner.lattice_resolution_m, heading_count).
-void checkLatticeGoal(const ProblemSpec& problem, const terrain::GridGeometry& geometry);
+/// position or heading lies in the goal region (planner.lattice_resolution_m, heading_count)
+/// of `query` (planningProblem()).
+void checkLatticeGoal(const ProblemSpec& problem, const search::PlanningProblem& query);
 
 /// A finished `plan` run: its report and exit status.
 struct PlanRun {
@@ -56,7 +52,8 @@ struct PlanRun {
 /// `plan` on a problem already read (overrides applied): plans, writes the solutions, refines
 /// them with --refine, draws the plots with --plot. Exit status 0 when solved (and, with
 /// --refine, at least one refinement converged), 1 otherwise; InputError for bad input.
-PlanRun executePlan(ProblemSpec& problem, const PlanOptions& options, CommandContext& context);
+PlanRun executePlan(const ProblemSpec& problem, const PlanOptions& options,
+                    CommandContext& context);
 
 /// What a report says about its run besides the planner's result.
 struct PlanReportInfo {

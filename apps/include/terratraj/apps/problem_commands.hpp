@@ -11,13 +11,15 @@
 
 namespace terratraj::apps {
 
+class ProblemScene;
+
 /// Options of `terratraj check`.
 struct CheckOptions {
   std::filesystem::path problem;
 };
 
 /// The JSON form of a problem as understood (radians, metres, local frame, resolved paths).
-nlohmann::json problemJson(const ProblemSpec& problem);
+nlohmann::json problemJson(const ProblemSpec& problem, const ProblemScene& scene);
 
 /// The vehicle's attitude resting at a boundary state (`which` = "start" / "goal" names it in
 /// messages). Throws InputError naming the problem file when it cannot rest there.

@@ -28,11 +28,16 @@ ProblemSpec loadProblem(const std::filesystem::path& yaml_file);
 ProblemSpec parseProblem(const std::string& yaml_text, const std::filesystem::path& base_dir,
                          const std::string& display_name);
 
+/// Start and goal in the local map frame [m, rad, m/s, rad/s].
+struct ResolvedPoses {
+  BoundaryState start;
+  BoundaryState goal;
+};
+
 /// Puts start and goal on the loaded terrain: converts them from world to local coordinates
-/// when problem.pose_frame is world (pose_frame becomes local; terrain.frame is kept), then
-/// checks that each lies inside the map's extent and on a cell that is neither no-data nor
-/// lethal. Throws InputError naming the file and the pose at fault; `problem` is unchanged
-/// when it throws. Calling it again on a resolved problem only repeats the checks.
-void resolvePosesOnTerrain(ProblemSpec& problem, const terrain::ElevationMap& map);
+/// when problem.pose_frame is world, then checks that each lies inside the map's extent and on
+/// a cell that is neither no-data nor lethal. Throws InputError naming the file and the pose at
+/// fault. `problem` is not changed (ProblemScene holds the resolved poses).
+ResolvedPoses resolvePoses(const ProblemSpec& problem, const terrain::ElevationMap& map);
 
 }  // namespace terratraj::apps

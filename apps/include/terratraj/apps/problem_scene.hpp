@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "terratraj/apps/command_context.hpp"
+#include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_spec.hpp"
 #include "terratraj/models/terrain_following_model.hpp"
 #include "terratraj/models/velocity_table.hpp"
@@ -19,16 +20,20 @@ namespace terratraj::apps {
 /// point into the map.
 class ProblemScene {
  public:
-  /// Loads the terrain of `problem` (resolving its start and goal on the map, which updates
-  /// `problem`), reads its tables, builds the bicubic surface and the vehicle model, and
-  /// computes the vehicle's resting attitude at start and goal. Throws InputError naming the
-  /// file / key / value at fault (unreadable terrain or table, pose off the map or where the
-  /// vehicle cannot rest).
-  ProblemScene(ProblemSpec& problem, const CommandContext& context);
+  /// Loads the terrain of `problem` and resolves its start and goal on the map (start(),
+  /// goal(); `problem` is not changed), reads its tables, builds the bicubic surface and the
+  /// vehicle model, and computes the vehicle's resting attitude at start and goal. Throws
+  /// InputError naming the file / key / value at fault (unreadable terrain or table, pose off
+  /// the map or where the vehicle cannot rest).
+  ProblemScene(const ProblemSpec& problem, const CommandContext& context);
   ProblemScene(const ProblemScene&) = delete;
   ProblemScene& operator=(const ProblemScene&) = delete;
 
   const terrain::ElevationMap& map() const { return map_; }
+  /// The start and goal in the local map frame (converted from the world frame when the file
+  /// gives them so).
+  const BoundaryState& start() const { return poses_.start; }
+  const BoundaryState& goal() const { return poses_.goal; }
   const terrain::TerrainSurface& surface() const { return surface_; }
   const models::TerrainFollowingModel& vehicle() const { return *vehicle_; }
   /// The tables the problem names, or null.
@@ -44,6 +49,7 @@ class ProblemScene {
 
  private:
   terrain::ElevationMap map_;
+  ResolvedPoses poses_;
   std::optional<models::PitchSpeedTable> pitch_table_;
   std::optional<models::RollCurvatureSpeedTable> roll_table_;
   terrain::TerrainSurface surface_;

@@ -288,8 +288,8 @@ struct ProblemSpec {
   SolverSpec solver;
   PlannerSpec planner;
   RefineSpec refine;
-  /// The frame start and goal are currently written in: terrain.frame as loaded, and kLocal
-  /// once resolvePosesOnTerrain() has converted them (terrain.frame itself is kept).
+  /// The frame start and goal are written in (terrain.frame); ProblemScene::start() / goal()
+  /// are the poses in the local frame.
   terrain::CoordinateFrame pose_frame = terrain::CoordinateFrame::kLocal;
 };
 

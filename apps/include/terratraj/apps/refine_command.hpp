@@ -27,18 +27,6 @@ struct RefineOptions {
   std::optional<std::filesystem::path> plot;  ///< map PNG (and -profiles, -convergence)
 };
 
-/// The refinement settings a problem file describes: its `refine` section, the solver's
-/// terminal tolerances, scheme and Hessian; `method` (a RefineMethod name) overrides
-/// refine.method. Throws InputError naming the option for an unknown method.
-refine::RefinementOptions refinementOptions(const ProblemSpec& problem,
-                                            const std::optional<std::string>& method);
-
-/// The reference frames a problem's homotopy classes are named by: TAEASL's construction with
-/// planner.frame_anchor and planner.frame_radius_m, so that `plan --planner taeasl` and
-/// `refine` name the same classes.
-search::ReferenceFrames problemReferenceFrames(const ProblemSpec& problem,
-                                               const search::PlanningProblem& query);
-
 /// The figures of a trajectory as JSON (cost, duration_s, length_m, max_abs_pitch_rad,
 /// max_abs_roll_rad, max_speed, min_clearance_m, check {ok, constraint_violation,
 /// violated_limits}, homotopy).

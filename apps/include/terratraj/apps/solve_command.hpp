@@ -30,17 +30,6 @@ struct SolveOptions {
   std::optional<std::filesystem::path> plot;  ///< map PNG (and -profiles, -convergence)
 };
 
-/// The parametric problem a problem file describes (tables not attached). Throws InputError
-/// for a method the parametric solvers do not provide.
-ocp::BoundaryValueProblem boundaryValueProblem(const ProblemSpec& problem);
-/// The solver settings a problem file describes.
-ocp::BoundaryValueOptions boundaryValueOptions(const ProblemSpec& problem);
-
-/// Whether a method is direct transcription (shooting, collocation).
-bool isTranscriptionMethod(SolverMethod method);
-/// The direct-transcription settings a problem file describes (the clearance map, when
-/// solver.min_clearance_m is set, is attached by the caller).
-ocp::DirectTranscriptionOptions transcriptionOptions(const ProblemSpec& problem);
 /// The contract's report of a direct-transcription solve: `verified` is its independent
 /// re-simulation; `guess_source` says where the initial guess came from.
 nlohmann::json transcriptionReportJson(const ocp::TranscriptionSolution& solution,

@@ -40,6 +40,16 @@ enum class FrameAnchor {
 /// "map_center", "start", "midpoint".
 const char* frameAnchorName(FrameAnchor anchor);
 
+/// Where `anchor` lies for `problem` [m, local]: the map's centre, the start, or halfway between
+/// the start and the goal's centre.
+Eigen::Vector2d frameAnchorPosition(FrameAnchor anchor, const PlanningProblem& problem);
+
+/// The reference frames TAEASL names homotopy classes by on `problem`'s map: the obstacle
+/// clusters of its lethal layer within `frame_radius` [m] of the anchor's position. Build them
+/// once and hand them to TaeaslPlanner and to the refiner, so that both name the same classes.
+ReferenceFrames taeaslReferenceFrames(const PlanningProblem& problem, FrameAnchor anchor,
+                                      double frame_radius);
+
 /// Settings of a TaeaslPlanner.
 struct TaeaslOptions {
   int homotopy_classes = 3;    ///< most solutions returned, >= 1
@@ -53,8 +63,12 @@ struct TaeaslOptions {
 /// TAEASL on one graph. The graph must outlive the planner.
 class TaeaslPlanner final : public Planner {
  public:
-  /// Builds the obstacle clusters and reference frames of the graph's map (lethal layer).
+  /// Builds the obstacle clusters and reference frames of the graph's map (lethal layer) with
+  /// options.anchor and options.frame_radius (taeaslReferenceFrames).
   TaeaslPlanner(const LatticeGraph& graph, const TaeaslOptions& options = {});
+  /// With frames built already (taeaslReferenceFrames with options.anchor and
+  /// options.frame_radius on the graph's problem).
+  TaeaslPlanner(const LatticeGraph& graph, ReferenceFrames frames, const TaeaslOptions& options);
 
   /// Searches (the termination condition's iteration budget counts expansions). kSolved with
   /// PlanResult::solutions holding up to homotopy_classes solutions in distinct classes, best
