@@ -171,7 +171,8 @@ PlannerSetup setUpLatticePlanner(const ProblemSpec& problem, const search::Plann
     info.extra["lattice"]["algorithm"] = search::latticeAlgorithmName(options.algorithm);
     info.extra["lattice"]["initial_epsilon"] = options.initial_epsilon;
     info.extra["lattice"]["epsilon_step"] = options.epsilon_step;
-    context.log->info("planning with the lattice ({}) for {} s", problem.planner.algorithm,
+    context.log->info("planning with the lattice ({}) for {} s",
+                      search::latticeAlgorithmName(options.algorithm),
                       problem.planner.time_limit_s);
     setup.planner = std::make_unique<search::LatticePlanner>(graph, options);
     return setup;

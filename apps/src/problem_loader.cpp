@@ -238,16 +238,20 @@ void parseTolerance(const Context& ctx, const Field& field, SolverSpec& solver) 
                      solver.tolerance_lagrangian_gradient);
 }
 
-// A string key restricted to `names`, into `value` when present.
+// A key naming one of `choices` (name, value), into `value` when present.
+template <typename Value>
 void readChoiceInto(const Context& ctx, const MapReader& map, const char* key,
-                    const std::vector<std::string>& names, std::string& value) {
+                    const std::vector<std::pair<std::string, Value>>& choices, Value& value) {
   if (const std::optional<Field> found = map.find(key)) {
-    value = readEnum<std::string>(
+    std::vector<std::string> names;
+    for (const auto& choice : choices) names.push_back(choice.first);
+    value = readEnum<Value>(
         ctx, *found,
-        [&](const std::string& text) {
-          return std::find(names.begin(), names.end(), text) != names.end()
-                     ? std::optional<std::string>(text)
-                     : std::nullopt;
+        [&](const std::string& text) -> std::optional<Value> {
+          for (const auto& [name, choice] : choices) {
+            if (name == text) return choice;
+          }
+          return std::nullopt;
         },
         names);
   }
@@ -275,10 +279,9 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
     map.fail("max_intervals", "must be >= intervals (" + std::to_string(*solver.intervals) +
                                   "), got " + std::to_string(solver.max_intervals));
   }
-  std::string initial_guess = "auto";
-  readChoiceInto(ctx, map, "initial_guess", {"auto", "flat"}, initial_guess);
-  solver.initial_guess =
-      initial_guess == "flat" ? InitialGuessKind::kFlat : InitialGuessKind::kAuto;
+  readChoiceInto<InitialGuessKind>(
+      ctx, map, "initial_guess",
+      {{"auto", InitialGuessKind::kAuto}, {"flat", InitialGuessKind::kFlat}}, solver.initial_guess);
   map.readIntInto("max_iterations", kMinIterations, kMaxIterations, solver.max_iterations);
   if (map.find("transcription_max_iterations")) {
     int iterations = 1;
@@ -296,11 +299,21 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
     parseTolerance(ctx, *tolerance, solver);
   }
   solver.time_limit_s = map.optionalNumber("time_limit_s", Range::nonNegative());
-  const auto choice = [&](const char* key, const std::vector<std::string>& names,
-                          std::string& value) { readChoiceInto(ctx, map, key, names, value); };
-  choice("scheme", {"hermite_simpson", "trapezoidal"}, solver.scheme);
-  choice("shooting_controls", {"linear", "constant"}, solver.shooting_controls);
-  choice("hessian", {"auto", "exact", "limited_memory"}, solver.hessian);
+  using ocp::TranscriptionScheme;
+  readChoiceInto<TranscriptionScheme>(ctx, map, "scheme",
+                                      {{"hermite_simpson", TranscriptionScheme::kHermiteSimpson},
+                                       {"trapezoidal", TranscriptionScheme::kTrapezoidal}},
+                                      solver.scheme);
+  readChoiceInto<ocp::ShootingControls>(ctx, map, "shooting_controls",
+                                        {{"linear", ocp::ShootingControls::kPiecewiseLinear},
+                                         {"constant", ocp::ShootingControls::kPiecewiseConstant}},
+                                        solver.shooting_controls);
+  readChoiceInto<std::optional<ocp::TranscriptionHessian>>(
+      ctx, map, "hessian",
+      {{"auto", std::nullopt},
+       {"exact", ocp::TranscriptionHessian::kExact},
+       {"limited_memory", ocp::TranscriptionHessian::kLimitedMemory}},
+      solver.hessian);
   map.readNumberInto("control_effort", Range::nonNegative(), solver.control_effort);
   map.readIntInto("mesh_refinement_rounds", 0, 10, solver.mesh_refinement_rounds);
   map.readNumberInto("mesh_refinement_tolerance", Range::positive(),
@@ -357,10 +370,15 @@ PlannerSpec parsePlanner(const Context& ctx, const Field& field) {
     planner.primitives = readPath(ctx, *file);
   }
   planner.primitive_speed = map.optionalNumber("primitive_speed", Range::positive());
-  const auto choice = [&](const char* key, const std::vector<std::string>& names,
-                          std::string& value) { readChoiceInto(ctx, map, key, names, value); };
-  choice("algorithm", {"arastar", "astar"}, planner.algorithm);
-  choice("frame_anchor", {"map_center", "start", "midpoint"}, planner.frame_anchor);
+  readChoiceInto<search::LatticeAlgorithm>(ctx, map, "algorithm",
+                                           {{"arastar", search::LatticeAlgorithm::kAraStar},
+                                            {"astar", search::LatticeAlgorithm::kAStar}},
+                                           planner.algorithm);
+  readChoiceInto<search::FrameAnchor>(ctx, map, "frame_anchor",
+                                      {{"map_center", search::FrameAnchor::kMapCenter},
+                                       {"start", search::FrameAnchor::kStart},
+                                       {"midpoint", search::FrameAnchor::kMidpoint}},
+                                      planner.frame_anchor);
   map.readNumberInto("initial_epsilon", Range::atLeast(1.0), planner.initial_epsilon);
   map.readNumberInto("epsilon_step", Range::positive(), planner.epsilon_step);
   map.readNumberInto("heuristic_weight", Range::atLeast(1.0), planner.heuristic_weight);
@@ -381,8 +399,11 @@ RefineSpec parseRefine(const Context& ctx, const Field& field) {
        "parametric_max_length_m", "parametric_min_clearance_m", "coarse_interval_length_m",
        "endpoint_tolerance_m"});
   RefineSpec refine;
-  readChoiceInto(ctx, map, "method", {"auto", "collocation", "shooting", "newton", "ipopt"},
-                 refine.method);
+  if (const std::optional<Field> method = map.find("method")) {
+    refine.method = readEnum<refine::RefineMethod>(
+        ctx, *method, [](const std::string& text) { return refine::parseRefineMethod(text); },
+        refine::refineMethodNames());
+  }
   map.readNumberInto("interval_length_m", Range::positive(), refine.interval_length_m);
   map.readIntInto("min_intervals", kMinIntervals, kMaxIntervals, refine.min_intervals);
   map.readIntInto("max_intervals", kMinIntervals, kMaxIntervals, refine.max_intervals);

@@ -83,12 +83,6 @@ search::GoalRegion goalRegion(const ProblemSpec& problem, const BoundaryState& g
   return goal;
 }
 
-search::FrameAnchor parseAnchor(const std::string& name) {
-  if (name == "start") return search::FrameAnchor::kStart;
-  if (name == "midpoint") return search::FrameAnchor::kMidpoint;
-  return search::FrameAnchor::kMapCenter;
-}
-
 }  // namespace
 
 ocp::BoundaryValueProblem boundaryValueProblem(const ProblemSpec& problem,
@@ -127,15 +121,9 @@ ocp::DirectTranscriptionOptions transcriptionOptions(const ProblemSpec& problem)
   ocp::DirectTranscriptionOptions options;
   options.scheme = solver.method == SolverMethod::kShooting
                        ? ocp::TranscriptionScheme::kMultipleShooting
-                   : solver.scheme == "trapezoidal" ? ocp::TranscriptionScheme::kTrapezoidal
-                                                    : ocp::TranscriptionScheme::kHermiteSimpson;
-  options.shooting_controls = solver.shooting_controls == "constant"
-                                  ? ocp::ShootingControls::kPiecewiseConstant
-                                  : ocp::ShootingControls::kPiecewiseLinear;
-  if (solver.hessian == "exact") options.hessian = ocp::TranscriptionHessian::kExact;
-  if (solver.hessian == "limited_memory") {
-    options.hessian = ocp::TranscriptionHessian::kLimitedMemory;
-  }
+                       : solver.scheme;
+  options.shooting_controls = solver.shooting_controls;
+  options.hessian = solver.hessian;
   options.intervals = solver.intervals.value_or(0);  // 0: by the seed's length (solveSeeded)
   // Piecewise-linear controls on Hermite-Simpson intervals: |v'| <= a_max and |omega'| hold
   // between the points too (the quadratic interpolation of a bang-bang control overshoots).
@@ -196,8 +184,7 @@ search::PlanningProblem planningProblem(const ProblemSpec& problem, const Proble
 
 search::LatticePlannerOptions latticePlannerOptions(const ProblemSpec& problem) {
   search::LatticePlannerOptions options;
-  options.algorithm = problem.planner.algorithm == "astar" ? search::LatticeAlgorithm::kAStar
-                                                           : search::LatticeAlgorithm::kAraStar;
+  options.algorithm = problem.planner.algorithm;
   options.initial_epsilon = problem.planner.initial_epsilon;
   options.epsilon_step = problem.planner.epsilon_step;
   return options;
@@ -207,7 +194,7 @@ search::TaeaslOptions taeaslOptions(const ProblemSpec& problem) {
   search::TaeaslOptions options;
   options.homotopy_classes = problem.planner.homotopy_classes;
   options.frame_radius = problem.planner.frame_radius_m;
-  options.anchor = parseAnchor(problem.planner.frame_anchor);
+  options.anchor = problem.planner.frame_anchor;
   options.heuristic_weight = problem.planner.heuristic_weight;
   if (problem.planner.max_signature_length) {
     options.max_signature_length = *problem.planner.max_signature_length;
@@ -217,7 +204,7 @@ search::TaeaslOptions taeaslOptions(const ProblemSpec& problem) {
 
 search::ReferenceFrames problemReferenceFrames(const ProblemSpec& problem,
                                                const search::PlanningProblem& query) {
-  return search::taeaslReferenceFrames(query, parseAnchor(problem.planner.frame_anchor),
+  return search::taeaslReferenceFrames(query, problem.planner.frame_anchor,
                                        problem.planner.frame_radius_m);
 }
 
@@ -225,14 +212,15 @@ refine::RefinementOptions refinementOptions(const ProblemSpec& problem,
                                             const std::optional<std::string>& method) {
   const RefineSpec& spec = problem.refine;
   refine::RefinementOptions options;
-  const std::string name = method.value_or(spec.method);
-  const std::optional<refine::RefineMethod> parsed = refine::parseRefineMethod(name);
-  if (!parsed) {
-    throw InputError(
-        (method ? std::string("--method") : problem.source_file.string() + ": refine.method") +
-        ": unknown method '" + name + "' (auto, collocation, shooting, newton, ipopt)");
+  options.method = spec.method;  // validated by the loader
+  if (method) {
+    const std::optional<refine::RefineMethod> parsed = refine::parseRefineMethod(*method);
+    if (!parsed) {
+      throw InputError("--method: unknown method '" + *method +
+                       "' (auto, collocation, shooting, newton, ipopt)");
+    }
+    options.method = *parsed;
   }
-  options.method = *parsed;
   options.interval_length_m = spec.interval_length_m;
   options.min_intervals = spec.min_intervals;
   options.max_intervals = spec.max_intervals;

@@ -15,6 +15,10 @@
 #include <vector>
 
 #include "terratraj/models/vehicle_limits.hpp"
+#include "terratraj/ocp/direct_transcription.hpp"
+#include "terratraj/refine/refinement_options.hpp"
+#include "terratraj/search/lattice_planner.hpp"
+#include "terratraj/search/taeasl_planner.hpp"
 #include "terratraj/terrain/terrain_source.hpp"
 
 namespace terratraj::apps {
@@ -214,14 +218,17 @@ struct SolverSpec {
   int yaw_rate_order = 4;  ///< parametric solvers: yaw-rate polynomial order, in [1, 8]
   int speed_order = 1;     ///< parametric solvers: speed polynomial order, in [1, 8]
   // Direct transcription (shooting / collocation); docs/problem-file.md.
-  std::string scheme = "hermite_simpson";    ///< collocation: hermite_simpson | trapezoidal
-  std::string shooting_controls = "linear";  ///< shooting: linear | constant
-  std::string hessian = "auto";              ///< auto | exact | limited_memory
-  double control_effort = 0.0;               ///< weight of the integral of v'^2 + omega'^2, >= 0
-  int mesh_refinement_rounds = 0;            ///< re-solves with split intervals, >= 0
-  double mesh_refinement_tolerance = 1e-3;   ///< local error that splits an interval [m, rad]
-  std::optional<double> min_clearance_m;     ///< clearance from lethal cells [m]; absent = none
-  std::optional<double> time_limit_s;        ///< wall-clock limit [s], >= 0; absent = none
+  /// collocation: hermite_simpson | trapezoidal
+  ocp::TranscriptionScheme scheme = ocp::TranscriptionScheme::kHermiteSimpson;
+  /// shooting: linear | constant
+  ocp::ShootingControls shooting_controls = ocp::ShootingControls::kPiecewiseLinear;
+  /// exact | limited_memory; absent: auto (exact for collocation without the Segway)
+  std::optional<ocp::TranscriptionHessian> hessian;
+  double control_effort = 0.0;              ///< weight of the integral of v'^2 + omega'^2, >= 0
+  int mesh_refinement_rounds = 0;           ///< re-solves with split intervals, >= 0
+  double mesh_refinement_tolerance = 1e-3;  ///< local error that splits an interval [m, rad]
+  std::optional<double> min_clearance_m;    ///< clearance from lethal cells [m]; absent = none
+  std::optional<double> time_limit_s;       ///< wall-clock limit [s], >= 0; absent = none
 };
 
 /// `planner`: the global planner.
@@ -244,18 +251,18 @@ struct PlannerSpec {
   int heading_count = 16;                           ///< headings of the lattice, in [4, 1024]
   std::optional<std::filesystem::path> primitives;  ///< primitive file; absent: the cache
   std::optional<double> primitive_speed;            ///< generation speed [m/s]; absent: v_max
-  std::string algorithm = "arastar";                ///< lattice: arastar | astar
-  double initial_epsilon = 3.0;                     ///< arastar: first heuristic weight, >= 1
-  double epsilon_step = 0.5;                        ///< arastar: decrease per round, > 0
-  std::string frame_anchor = "map_center";          ///< taeasl: map_center | start | midpoint
-  double heuristic_weight = 1.0;                    ///< taeasl: weight of the heuristic, >= 1
-  std::optional<int> max_signature_length;          ///< taeasl: absent: 2 x frames + 2
+  search::LatticeAlgorithm algorithm = search::LatticeAlgorithm::kAraStar;  ///< lattice
+  double initial_epsilon = 3.0;  ///< arastar: first heuristic weight, >= 1
+  double epsilon_step = 0.5;     ///< arastar: decrease per round, > 0
+  search::FrameAnchor frame_anchor = search::FrameAnchor::kMapCenter;  ///< taeasl
+  double heuristic_weight = 1.0;            ///< taeasl: weight of the heuristic, >= 1
+  std::optional<int> max_signature_length;  ///< taeasl: absent: 2 x frames + 2
 };
 
 /// `refine`: how `plan --refine` and `refine` turn candidates into locally optimal trajectories
 /// (refine::CandidateRefiner; docs/refinement.md).
 struct RefineSpec {
-  std::string method = "auto";      ///< auto | collocation | shooting | newton | ipopt
+  refine::RefineMethod method = refine::RefineMethod::kAuto;  ///< refine::parseRefineMethod
   double interval_length_m = 0.25;  ///< one transcription interval per this much length [m], > 0
   int min_intervals = 20;           ///< fewest transcription intervals, >= 2
   int max_intervals = 800;          ///< most transcription intervals, >= min_intervals
