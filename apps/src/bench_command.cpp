@@ -22,6 +22,11 @@
 extern char** environ;
 
 namespace terratraj::apps {
+
+using bench::BenchmarkCase;
+using bench::BenchmarkSuite;
+using bench::makeBenchmarkSuite;
+using bench::millisecondsSince;
 namespace {
 
 namespace fs = std::filesystem;

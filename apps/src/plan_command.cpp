@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "terratraj/apps/cli.hpp"
-#include "terratraj/apps/json_number.hpp"
 #include "terratraj/apps/output_paths.hpp"
 #include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/apps/problem_commands.hpp"
@@ -17,9 +16,10 @@
 #include "terratraj/apps/problem_translation.hpp"
 #include "terratraj/apps/refine_command.hpp"
 #include "terratraj/apps/solve_command.hpp"
-#include "terratraj/apps/vehicle_factory.hpp"
 #include "terratraj/apps/verdict_json.hpp"
+#include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
+#include "terratraj/models/vehicle_factory.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/lattice_graph.hpp"
 #include "terratraj/search/lattice_planner.hpp"
@@ -31,6 +31,8 @@
 #include "terratraj/terrain/terrain_generator.hpp"
 
 namespace terratraj::apps {
+
+using bench::jsonNumber;
 namespace {
 
 std::string formatNumber(double value) {

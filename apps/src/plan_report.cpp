@@ -3,11 +3,13 @@
 
 #include <algorithm>
 
-#include "terratraj/apps/json_number.hpp"
 #include "terratraj/apps/plan_command.hpp"
 #include "terratraj/apps/verdict_json.hpp"
+#include "terratraj/bench/report_json.hpp"
 
 namespace terratraj::apps {
+
+using bench::jsonNumber;
 
 nlohmann::json planReportJson(const search::PlanResult& result, const PlanReportInfo& info) {
   nlohmann::json history = nlohmann::json::array();

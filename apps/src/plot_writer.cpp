@@ -11,11 +11,13 @@
 #include <fstream>
 #include <sstream>
 
-#include "terratraj/apps/json_number.hpp"
 #include "terratraj/apps/plot_script.hpp"
+#include "terratraj/bench/report_json.hpp"
 #include "terratraj/terrain/input_error.hpp"
 
 namespace terratraj::apps {
+
+using bench::jsonNumber;
 namespace {
 
 namespace fs = std::filesystem;

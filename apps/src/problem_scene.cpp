@@ -6,7 +6,7 @@
 
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
-#include "terratraj/apps/vehicle_factory.hpp"
+#include "terratraj/models/vehicle_factory.hpp"
 #include "terratraj/terrain/input_error.hpp"
 #include "terratraj/terrain/terrain_source.hpp"
 

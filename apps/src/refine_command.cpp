@@ -4,7 +4,6 @@
 #include <ostream>
 
 #include "terratraj/apps/cli.hpp"
-#include "terratraj/apps/json_number.hpp"
 #include "terratraj/apps/output_paths.hpp"
 #include "terratraj/apps/plan_command.hpp"
 #include "terratraj/apps/plot_writer.hpp"
@@ -13,6 +12,7 @@
 #include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/apps/problem_translation.hpp"
 #include "terratraj/apps/solve_command.hpp"
+#include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
 #include "terratraj/search/taeasl_planner.hpp"
@@ -20,6 +20,8 @@
 #include "terratraj/terrain/obstacle_clusters.hpp"
 
 namespace terratraj::apps {
+
+using bench::jsonNumber;
 namespace {
 
 // The largest limit, table or map violation of a refined trajectory, from the verdict's check

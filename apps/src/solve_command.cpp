@@ -5,17 +5,17 @@
 #include <ostream>
 
 #include "terratraj/apps/cli.hpp"
-#include "terratraj/apps/json_number.hpp"
 #include "terratraj/apps/output_paths.hpp"
 #include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/apps/problem_translation.hpp"
-#include "terratraj/apps/vehicle_factory.hpp"
 #include "terratraj/apps/verdict_json.hpp"
+#include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
+#include "terratraj/models/vehicle_factory.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
 #include "terratraj/ocp/start_at_goal.hpp"
 #include "terratraj/ocp/transcription_guess.hpp"
@@ -25,6 +25,9 @@
 #include "terratraj/terrain/input_error.hpp"
 
 namespace terratraj::apps {
+
+using bench::attemptsJson;
+using bench::jsonNumber;
 namespace {}  // namespace
 
 nlohmann::json iterationHistoryJson(const std::vector<ocp::IterationRecord>& history,
@@ -252,19 +255,6 @@ nlohmann::json seededReportJson(const refine::SeededSolution& solution,
 }
 
 }  // namespace
-
-nlohmann::json attemptsJson(const std::vector<refine::SeedAttempt>& attempts) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (const refine::SeedAttempt& a : attempts) {
-    rows.push_back({{"seed", a.seed},
-                    {"method", a.method},
-                    {"status", ocp::solveStatusName(a.status)},
-                    {"reason", a.reason},
-                    {"cost", jsonNumber(a.cost)},
-                    {"time_ms", a.time_ms}});
-  }
-  return rows;
-}
 
 int runSolve(const SolveOptions& options, CommandContext& context) {
   ProblemSpec problem = loadProblem(options.problem);

@@ -1,9 +1,11 @@
 #include "terratraj/apps/verdict_json.hpp"
 
-#include "terratraj/apps/json_number.hpp"
+#include "terratraj/bench/report_json.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
 
 namespace terratraj::apps {
+
+using bench::jsonNumber;
 
 nlohmann::json checkReportJson(const models::CheckReport& check) {
   nlohmann::json violations = nlohmann::json::array();

@@ -17,10 +17,13 @@
 
 #include "cli_run.hpp"
 #include "terratraj/apps/bench_command.hpp"
-#include "terratraj/apps/benchmark_suite.hpp"
 #include "terratraj/apps/cli.hpp"
+#include "terratraj/bench/benchmark_suite.hpp"
 
 namespace terratraj::apps {
+using bench::distributionJson;
+using bench::figureText;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -10,10 +10,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "terratraj/apps/benchmark_suite.hpp"
 #include "terratraj/apps/command_context.hpp"
+#include "terratraj/bench/benchmark_suite.hpp"
 
 namespace terratraj::apps {
+
+using bench::BenchmarkSettings;
 
 /// A shard K/N: this run takes the cases whose index i satisfies i % N == K - 1.
 struct Shard {

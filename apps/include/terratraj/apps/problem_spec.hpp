@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "terratraj/models/vehicle_factory.hpp"
 #include "terratraj/models/vehicle_limits.hpp"
 #include "terratraj/ocp/direct_transcription.hpp"
 #include "terratraj/refine/refinement_options.hpp"
@@ -26,8 +27,11 @@ namespace terratraj::apps {
 // ---------------------------------------------------------------------------------------------
 // Enumerations and their names.
 
-/// Vehicle models, named in YAML as point | four_wheel | rocker_bogie | segway_rmp.
-enum class VehicleModelKind { kPoint, kFourWheel, kRockerBogie, kSegwayRmp };
+// Vehicle models (point | four_wheel | rocker_bogie | segway_rmp): models/vehicle_factory.hpp.
+using models::parseVehicleModelKind;
+using models::VehicleModelKind;
+using models::vehicleModelName;
+using models::vehicleModelNames;
 
 /// Costs, named in YAML as time | slope_dwell.
 enum class CostKind {
@@ -79,12 +83,6 @@ std::vector<std::string> enumNames(const std::array<EnumName<Enum>, N>& table) {
   return names;
 }
 
-inline constexpr std::array<EnumName<VehicleModelKind>, 4> kVehicleModelNames{{
-    {VehicleModelKind::kPoint, "point"},
-    {VehicleModelKind::kFourWheel, "four_wheel"},
-    {VehicleModelKind::kRockerBogie, "rocker_bogie"},
-    {VehicleModelKind::kSegwayRmp, "segway_rmp"},
-}};
 inline constexpr std::array<EnumName<CostKind>, 2> kCostKindNames{{
     {CostKind::kTime, "time"},
     {CostKind::kSlopeDwell, "slope_dwell"},
@@ -105,19 +103,6 @@ inline constexpr std::array<EnumName<PlannerKind>, 3> kPlannerKindNames{{
 }};
 
 }  // namespace detail
-
-/// Parses a vehicle model name ("point", ...); std::nullopt if it is not one.
-inline std::optional<VehicleModelKind> parseVehicleModelKind(std::string_view name) {
-  return detail::parseEnumName(detail::kVehicleModelNames, name);
-}
-/// The YAML name of a vehicle model.
-inline const char* vehicleModelName(VehicleModelKind kind) {
-  return detail::enumName(detail::kVehicleModelNames, kind);
-}
-/// Every vehicle model name, in declaration order.
-inline std::vector<std::string> vehicleModelNames() {
-  return detail::enumNames(detail::kVehicleModelNames);
-}
 
 /// Parses a cost name ("time", "slope_dwell"); std::nullopt if it is not one.
 inline std::optional<CostKind> parseCostKind(std::string_view name) {

@@ -47,10 +47,6 @@ nlohmann::json iterationHistoryJson(const std::vector<ocp::IterationRecord>& his
 /// constraint_violation, violated_limit, slope_dwell_rad2_s, verified (null where it failed).
 nlohmann::json verifiedTrajectoryJson(const ocp::VerifiedTrajectory& verified);
 
-/// The report's `attempts`: per seed tried, seed, method, status, reason, verified cost (null
-/// without a re-simulation), time_ms.
-nlohmann::json attemptsJson(const std::vector<refine::SeedAttempt>& attempts);
-
 /// The contract's solve report for a solution.
 nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,
                                const ocp::BoundaryValueOptions& options);

@@ -5,15 +5,15 @@
 
 #include <sstream>
 
-#include "terratraj/apps/benchmark_suite.hpp"
-#include "terratraj/apps/json_number.hpp"
+#include "terratraj/bench/benchmark_suite.hpp"
+#include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/driving_log_simulator.hpp"
 #include "terratraj/models/kinodynamic_tables.hpp"
 #include "terratraj/search/benchmark_world.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/trajectory_checker.hpp"
 
-namespace terratraj::apps {
+namespace terratraj::bench {
 namespace {
 
 const char* const kTableKinds[] = {"none", "physics", "data"};
@@ -206,4 +206,4 @@ std::unique_ptr<BenchmarkSuite> makeTablesSuite(const BenchmarkSettings& setting
   return std::make_unique<TablesSuite>(settings);
 }
 
-}  // namespace terratraj::apps
+}  // namespace terratraj::bench

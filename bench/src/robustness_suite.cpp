@@ -14,11 +14,10 @@
 #include <optional>
 #include <sstream>
 
-#include "terratraj/apps/benchmark_suite.hpp"
-#include "terratraj/apps/json_number.hpp"
-#include "terratraj/apps/solve_command.hpp"
-#include "terratraj/apps/vehicle_factory.hpp"
+#include "terratraj/bench/benchmark_suite.hpp"
+#include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/segway_lookups.hpp"
+#include "terratraj/models/vehicle_factory.hpp"
 #include "terratraj/ocp/dubins_path.hpp"
 #include "terratraj/ocp/robustness_sets.hpp"
 #include "terratraj/refine/seeded_solver.hpp"
@@ -26,7 +25,9 @@
 #include "terratraj/terrain/raster_io.hpp"
 #include "terratraj/terrain/terrain_surface.hpp"
 
-namespace terratraj::apps {
+namespace terratraj::bench {
+
+using models::VehicleModelKind;
 namespace {
 
 namespace sets = ocp::problem_sets;
@@ -345,4 +346,4 @@ std::vector<std::filesystem::path> robustnessInputs(const BenchmarkSettings& set
   return RobustnessCases(settings).inputFiles();
 }
 
-}  // namespace terratraj::apps
+}  // namespace terratraj::bench

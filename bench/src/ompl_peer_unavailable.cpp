@@ -1,8 +1,8 @@
 // The OMPL peers in a build without OMPL (-DTERRATRAJ_WITH_OMPL=OFF): unavailable.
 
-#include "terratraj/apps/ompl_peer.hpp"
+#include "terratraj/bench/ompl_peer.hpp"
 
-namespace terratraj::apps {
+namespace terratraj::bench {
 
 bool omplPeersAvailable() { return false; }
 
@@ -13,4 +13,4 @@ OmplRun runOmplPeer(const search::PlanningProblem& /*problem*/, OmplPlanner /*pl
   return run;
 }
 
-}  // namespace terratraj::apps
+}  // namespace terratraj::bench

@@ -1,13 +1,13 @@
 // The OMPL peers of the planners suite: same problem, same propagator, same checks.
 
-#include "terratraj/apps/ompl_peer.hpp"
+#include "terratraj/bench/ompl_peer.hpp"
 
 #include <gtest/gtest.h>
 
 #include "terratraj/search/benchmark_world.hpp"
 #include "terratraj/search/trajectory_checker.hpp"
 
-namespace terratraj::apps {
+namespace terratraj::bench {
 namespace {
 
 // On open hills both peers reach the goal region; the re-integrated trajectory starts at the
@@ -42,4 +42,4 @@ TEST(OmplPeer, BothPeersSolveAnOpenProblemWithinTheLimits) {
 }
 
 }  // namespace
-}  // namespace terratraj::apps
+}  // namespace terratraj::bench

@@ -1,4 +1,4 @@
-#include "terratraj/apps/benchmark_suite.hpp"
+#include "terratraj/bench/benchmark_suite.hpp"
 
 #include <sstream>
 
@@ -7,7 +7,7 @@
 
 #include "terratraj/terrain/input_error.hpp"
 
-namespace terratraj::apps {
+namespace terratraj::bench {
 namespace {
 
 double percentile(const std::vector<double>& sorted, double p) {
@@ -93,4 +93,4 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
-}  // namespace terratraj::apps
+}  // namespace terratraj::bench

@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace terratraj::apps {
+namespace terratraj::bench {
 
 /// What every suite reads. Defaults are the full suites of docs/benchmarks.md.
 struct BenchmarkSettings {
@@ -76,4 +76,4 @@ std::string figureText(const nlohmann::json& distribution, const char* key);
 /// Wall time since `start` [ms].
 double millisecondsSince(std::chrono::steady_clock::time_point start);
 
-}  // namespace terratraj::apps
+}  // namespace terratraj::bench

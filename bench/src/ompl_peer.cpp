@@ -1,4 +1,4 @@
-#include "terratraj/apps/ompl_peer.hpp"
+#include "terratraj/bench/ompl_peer.hpp"
 
 #include <ompl/base/Goal.h>
 #include <ompl/base/OptimizationObjective.h>
@@ -25,7 +25,7 @@
 
 #include "terratraj/search/extension_integrator.hpp"
 
-namespace terratraj::apps {
+namespace terratraj::bench {
 namespace {
 
 namespace ob = ompl::base;
@@ -542,4 +542,4 @@ OmplRun runOmplPeer(const search::PlanningProblem& problem, OmplPlanner planner,
   return run;
 }
 
-}  // namespace terratraj::apps
+}  // namespace terratraj::bench

@@ -14,7 +14,7 @@
 #include "terratraj/models/trajectory.hpp"
 #include "terratraj/search/planning_problem.hpp"
 
-namespace terratraj::apps {
+namespace terratraj::bench {
 
 enum class OmplPlanner { kRrt, kSst };
 /// "ompl_rrt", "ompl_sst".
@@ -46,4 +46,4 @@ struct OmplRun {
 OmplRun runOmplPeer(const search::PlanningProblem& problem, OmplPlanner planner, double budget_s,
                     std::uint64_t seed);
 
-}  // namespace terratraj::apps
+}  // namespace terratraj::bench

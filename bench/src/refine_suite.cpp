@@ -9,8 +9,8 @@
 #include <optional>
 #include <sstream>
 
-#include "terratraj/apps/benchmark_suite.hpp"
-#include "terratraj/apps/json_number.hpp"
+#include "terratraj/bench/benchmark_suite.hpp"
+#include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/refine/candidate_refiner.hpp"
 #include "terratraj/search/benchmark_world.hpp"
@@ -21,7 +21,7 @@
 #include "terratraj/search/trajectory_checker.hpp"
 #include "terratraj/terrain/obstacle_clusters.hpp"
 
-namespace terratraj::apps {
+namespace terratraj::bench {
 namespace {
 
 const char* const kPlanners[] = {"prm_first", "prm_1s", "taeasl"};
@@ -211,4 +211,4 @@ std::unique_ptr<BenchmarkSuite> makeRefineSuite(const BenchmarkSettings& setting
   return std::make_unique<RefineSuite>(settings);
 }
 
-}  // namespace terratraj::apps
+}  // namespace terratraj::bench

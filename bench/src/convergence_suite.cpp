@@ -11,8 +11,8 @@
 #include <optional>
 #include <sstream>
 
-#include "terratraj/apps/benchmark_suite.hpp"
-#include "terratraj/apps/json_number.hpp"
+#include "terratraj/bench/benchmark_suite.hpp"
+#include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/rocker_bogie_attitude_model.hpp"
 #include "terratraj/ocp/boundary_value_solver.hpp"
@@ -25,7 +25,7 @@
 #include "terratraj/terrain/raster_io.hpp"
 #include "terratraj/terrain/terrain_surface.hpp"
 
-namespace terratraj::apps {
+namespace terratraj::bench {
 namespace {
 
 namespace sets = ocp::problem_sets;
@@ -392,4 +392,4 @@ std::unique_ptr<BenchmarkSuite> makeConvergenceSuite(const BenchmarkSettings& se
   return std::make_unique<ConvergenceSuite>(settings);
 }
 
-}  // namespace terratraj::apps
+}  // namespace terratraj::bench

@@ -9,9 +9,9 @@
 #include <sstream>
 #include <tuple>
 
-#include "terratraj/apps/benchmark_suite.hpp"
-#include "terratraj/apps/json_number.hpp"
-#include "terratraj/apps/ompl_peer.hpp"
+#include "terratraj/bench/benchmark_suite.hpp"
+#include "terratraj/bench/ompl_peer.hpp"
+#include "terratraj/bench/report_json.hpp"
 #include "terratraj/search/bang_bang_bound.hpp"
 #include "terratraj/search/benchmark_world.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
@@ -21,7 +21,7 @@
 #include "terratraj/search/taeasl_planner.hpp"
 #include "terratraj/search/trajectory_checker.hpp"
 
-namespace terratraj::apps {
+namespace terratraj::bench {
 namespace {
 
 using terrain::TerrainKind;
@@ -340,4 +340,4 @@ std::unique_ptr<BenchmarkSuite> makePlannersSuite(const BenchmarkSettings& setti
   return std::make_unique<PlannersSuite>(settings);
 }
 
-}  // namespace terratraj::apps
+}  // namespace terratraj::bench
