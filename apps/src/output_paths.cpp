@@ -1,5 +1,7 @@
 #include "terratraj/apps/output_paths.hpp"
 
+#include <cstdlib>
+
 #include <unistd.h>
 
 #include <fstream>
@@ -72,6 +74,17 @@ void writeJsonFile(const nlohmann::json& json, const std::filesystem::path& file
   out << json.dump(indent) << '\n';
   out.flush();
   if (!out) throw InputError(file.string() + ": cannot be written");
+}
+
+std::filesystem::path primitiveCacheDirectory() {
+  if (const char* dir = std::getenv("TERRATRAJ_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* dir = std::getenv("XDG_CACHE_HOME"); dir && *dir) {
+    return std::filesystem::path(dir) / "terratraj";
+  }
+  if (const char* home = std::getenv("HOME"); home && *home) {
+    return std::filesystem::path(home) / ".cache" / "terratraj";
+  }
+  return {};
 }
 
 }  // namespace terratraj::apps

@@ -137,7 +137,8 @@ PlannerSetup setUpLatticePlanner(const ProblemSpec& problem, const search::Plann
   const auto load_started = std::chrono::steady_clock::now();
   setup.primitives = std::make_unique<search::LoadedPrimitives>(search::loadOrGeneratePrimitives(
       lattice, query.limits, generation,
-      problem.planner.primitives ? *problem.planner.primitives : std::filesystem::path()));
+      problem.planner.primitives ? *problem.planner.primitives : std::filesystem::path(),
+      primitiveCacheDirectory()));
   const search::LoadedPrimitives& primitives = *setup.primitives;
   const double load_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_started)

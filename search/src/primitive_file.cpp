@@ -228,17 +228,6 @@ PrimitiveSet readPrimitiveFile(const std::filesystem::path& path) {
   return set;
 }
 
-std::filesystem::path primitiveCacheDirectory() {
-  if (const char* dir = std::getenv("TERRATRAJ_CACHE_DIR"); dir && *dir) return dir;
-  if (const char* dir = std::getenv("XDG_CACHE_HOME"); dir && *dir) {
-    return std::filesystem::path(dir) / "terratraj";
-  }
-  if (const char* home = std::getenv("HOME"); home && *home) {
-    return std::filesystem::path(home) / ".cache" / "terratraj";
-  }
-  return {};
-}
-
 std::string primitiveCacheName(const LatticeSpec& lattice, const models::VehicleLimits& limits,
                                const PrimitiveGenerationOptions& options) {
   Hasher h;
@@ -276,7 +265,8 @@ const char* primitiveSourceName(PrimitiveSource source) {
 LoadedPrimitives loadOrGeneratePrimitives(const LatticeSpec& lattice,
                                           const models::VehicleLimits& limits,
                                           const PrimitiveGenerationOptions& options,
-                                          const std::filesystem::path& file) {
+                                          const std::filesystem::path& file,
+                                          const std::filesystem::path& cache_dir) {
   LoadedPrimitives loaded;
   if (!file.empty()) {
     if (!std::filesystem::exists(file)) {
@@ -292,9 +282,9 @@ LoadedPrimitives loadOrGeneratePrimitives(const LatticeSpec& lattice,
     loaded.path = file;
     return loaded;
   }
-  const std::filesystem::path dir = primitiveCacheDirectory();
   const std::filesystem::path cached =
-      dir.empty() ? std::filesystem::path() : dir / primitiveCacheName(lattice, limits, options);
+      cache_dir.empty() ? std::filesystem::path()
+                        : cache_dir / primitiveCacheName(lattice, limits, options);
   if (!cached.empty() && std::filesystem::exists(cached)) {
     try {
       PrimitiveSet set = readPrimitiveFile(cached);
@@ -318,7 +308,7 @@ LoadedPrimitives loadOrGeneratePrimitives(const LatticeSpec& lattice,
   loaded.set = std::move(generated.set);
   loaded.source = PrimitiveSource::kGenerated;
   if (cached.empty()) {
-    loaded.cache_note = "no cache directory (set TERRATRAJ_CACHE_DIR or HOME)";
+    loaded.cache_note = "no cache directory";
     return loaded;
   }
   try {

@@ -5,6 +5,7 @@
 #include <memory>
 #include <random>
 
+#include "common/finite_difference.hpp"
 #include "terratraj/models/four_wheel_attitude_model.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/rocker_bogie_attitude_model.hpp"
@@ -45,24 +46,14 @@ ElevationMap roughMap() {
 // from a cold start.
 Eigen::Matrix3d finiteDifferenceJacobian(const TerrainFollowingModel& model, const PlanarPose& pose,
                                          double h) {
-  Eigen::Matrix3d jacobian;
-  for (int k = 0; k < 3; ++k) {
-    PlanarPose plus = pose, minus = pose;
-    double* plus_value = k == 0 ? &plus.x : (k == 1 ? &plus.y : &plus.heading);
-    double* minus_value = k == 0 ? &minus.x : (k == 1 ? &minus.y : &minus.heading);
-    *plus_value += h;
-    *minus_value -= h;
-    AttitudeWorkspace workspace;
-    AttitudeResult a, b;
-    EXPECT_EQ(model.compute(plus, workspace, a), AttitudeStatus::kOk);
-    workspace.has_warm_start = false;
-    EXPECT_EQ(model.compute(minus, workspace, b), AttitudeStatus::kOk);
-    jacobian.col(k) =
-        Eigen::Vector3d(a.attitude.z - b.attitude.z, a.attitude.roll - b.attitude.roll,
-                        a.attitude.pitch - b.attitude.pitch) /
-        (2 * h);
-  }
-  return jacobian;
+  const auto attitude = [&](const Eigen::VectorXd& at) {
+    AttitudeWorkspace workspace;  // cold
+    AttitudeResult a;
+    EXPECT_EQ(model.compute({at(0), at(1), at(2)}, workspace, a), AttitudeStatus::kOk);
+    return Eigen::Vector3d(a.attitude.z, a.attitude.roll, a.attitude.pitch);
+  };
+  return terratraj::testing::centralDifferences(attitude,
+                                                Eigen::Vector3d(pose.x, pose.y, pose.heading), h);
 }
 
 std::vector<PlanarPose> randomPoses(int count, double lo, double hi, unsigned seed) {

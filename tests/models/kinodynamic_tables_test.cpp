@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/finite_difference.hpp"
 #include "terratraj/models/driving_log_simulator.hpp"
 #include "terratraj/terrain/input_error.hpp"
 
@@ -91,11 +92,13 @@ TEST(RollCurvatureSpeedTable, SmoothLookupHasTheRightGradient) {
     for (double k = -1.1; k < 1.1; k += 0.093) {
       double dr = 0.0, dk = 0.0;
       table.smoothLookup(r, k, &dr, &dk);
-      const double h = 1e-7;
-      EXPECT_NEAR(dr, (table.smoothLookup(r + h, k) - table.smoothLookup(r - h, k)) / (2 * h),
-                  1e-4);
-      EXPECT_NEAR(dk, (table.smoothLookup(r, k + h) - table.smoothLookup(r, k - h)) / (2 * h),
-                  1e-4);
+      const auto speed = [&](const Eigen::VectorXd& at) {
+        return Eigen::VectorXd::Constant(1, table.smoothLookup(at(0), at(1)));
+      };
+      EXPECT_TRUE(terratraj::testing::matchesFiniteDifferences(
+          Eigen::RowVector2d(dr, dk),
+          terratraj::testing::centralDifferences(speed, Eigen::Vector2d(r, k), 1e-7), 1e-4))
+          << "roll " << r << ", curvature " << k;
     }
   }
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "common/finite_difference.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/rocker_bogie_attitude_model.hpp"
 #include "terratraj/terrain/terrain_generator.hpp"
@@ -69,27 +70,22 @@ TEST(RoverKinematics, RatesAndJacobiansMatchFiniteDifferences) {
   EXPECT_NEAR(rates.rate(0), 0.7 * std::cos(0.8) * std::cos(pitch), 1e-14);
   EXPECT_NEAR(rates.rate(2), 0.25 * std::cos(roll) / std::cos(pitch), 1e-14);
   const double h = 1e-6;
-  for (int k = 0; k < 5; ++k) {
-    Eigen::Matrix<double, 5, 1> plus = state, minus = state;
-    plus(k) += h;
-    minus(k) -= h;
-    RoverStateSpaceRates a, b;
+  const auto by_state = [&](const Eigen::VectorXd& at) {
+    RoverStateSpaceRates a;
     AttitudeWorkspace cold;
-    ASSERT_EQ(kinematics.stateSpaceRates(plus, control, cold, a), AttitudeStatus::kOk);
-    cold.has_warm_start = false;
-    ASSERT_EQ(kinematics.stateSpaceRates(minus, control, cold, b), AttitudeStatus::kOk);
-    const Eigen::Matrix<double, 5, 1> fd = (a.rate - b.rate) / (2 * h);
-    EXPECT_LT((rates.d_state.col(k) - fd).cwiseAbs().maxCoeff(), 1e-6) << "state " << k;
-  }
-  for (int k = 0; k < 2; ++k) {
-    Eigen::Vector2d plus = control, minus = control;
-    plus(k) += h;
-    minus(k) -= h;
-    RoverStateSpaceRates a, b;
-    ASSERT_EQ(kinematics.stateSpaceRates(state, plus, workspace, a), AttitudeStatus::kOk);
-    ASSERT_EQ(kinematics.stateSpaceRates(state, minus, workspace, b), AttitudeStatus::kOk);
-    EXPECT_LT((rates.d_control.col(k) - (a.rate - b.rate) / (2 * h)).cwiseAbs().maxCoeff(), 1e-8);
-  }
+    EXPECT_EQ(kinematics.stateSpaceRates(at, control, cold, a), AttitudeStatus::kOk);
+    return Eigen::VectorXd(a.rate);
+  };
+  EXPECT_TRUE(terratraj::testing::matchesFiniteDifferences(
+      rates.d_state, terratraj::testing::centralDifferences(by_state, state, h), 1e-6));
+  const auto by_control = [&](const Eigen::VectorXd& at) {
+    RoverStateSpaceRates a;
+    EXPECT_EQ(kinematics.stateSpaceRates(state, Eigen::Vector2d(at), workspace, a),
+              AttitudeStatus::kOk);
+    return Eigen::VectorXd(a.rate);
+  };
+  EXPECT_TRUE(terratraj::testing::matchesFiniteDifferences(
+      rates.d_control, terratraj::testing::centralDifferences(by_control, control, h), 1e-8));
 }
 
 TEST(RoverIntegrator, ConstantControlsOnFlatGroundGiveTheExactArc) {
@@ -140,35 +136,20 @@ TEST(RoverIntegrator, TheThreeMethodsAgreeOnRoughTerrain) {
   EXPECT_GT((reference.head<2>() - start.head<2>()).norm(), 3.0);  // it really went somewhere
 }
 
-// The controls with parameter i moved by +h and by -h.
-std::pair<PolynomialControls, PolynomialControls> perturbed(const PolynomialControls& controls,
-                                                            Eigen::Index i, double h) {
-  PolynomialControls plus = controls, minus = controls;
-  Eigen::VectorXd qp = controls.parameters(), qm = controls.parameters();
-  qp(i) += h;
-  qm(i) -= h;
-  plus.setParameters(qp);
-  minus.setParameters(qm);
-  return {plus, minus};
-}
-
 // Central differences of the final state by each control parameter.
 Eigen::MatrixXd finiteDifferenceSensitivity(const RoverKinematics& kinematics,
                                             const IntegratorOptions& options,
                                             const Eigen::Vector3d& start,
                                             const PolynomialControls& controls, double duration,
                                             double h) {
-  const Eigen::VectorXd q = controls.parameters();
-  Eigen::MatrixXd fd(3, q.size());
   IntegratorOptions plain = options;
   plain.sensitivities = false;
-  for (Eigen::Index i = 0; i < q.size(); ++i) {
-    const auto [plus, minus] = perturbed(controls, i, h);
-    fd.col(i) = (integrateTo(kinematics, plain, start, plus, duration) -
-                 integrateTo(kinematics, plain, start, minus, duration)) /
-                (2 * h);
-  }
-  return fd;
+  const auto final_state = [&](const Eigen::VectorXd& q) {
+    PolynomialControls at = controls;
+    at.setParameters(q);
+    return Eigen::VectorXd(integrateTo(kinematics, plain, start, at, duration));
+  };
+  return terratraj::testing::centralDifferences(final_state, controls.parameters(), h);
 }
 
 TEST(RoverIntegrator, SensitivitiesMatchFiniteDifferences) {
@@ -272,14 +253,17 @@ TEST(RoverIntegrator, IntegralSensitivitiesMatchFiniteDifferencesWhateverCameBef
     const Eigen::VectorXd q = controls.parameters();
     IntegratorOptions plain = options;
     plain.sensitivities = false;
-    const double h = 1e-5;
-    for (Eigen::Index i = 0; i < q.size(); ++i) {
-      const auto [plus, minus] = perturbed(controls, i, h);
+    const auto integral = [&](const Eigen::VectorXd& at) {
+      PolynomialControls perturbed_controls = controls;
+      perturbed_controls.setParameters(at);
       RoverIntegrator fresh(kinematics, plain);
-      IntegrationResult up, down;
-      fresh.integrate(start, plus, 6.0, {}, up, integrand);
-      fresh.integrate(start, minus, 6.0, {}, down, integrand);
-      const double fd = (up.integral - down.integral) / (2 * h);
+      IntegrationResult r;
+      fresh.integrate(start, perturbed_controls, 6.0, {}, r, integrand);
+      return Eigen::VectorXd::Constant(1, r.integral);
+    };
+    const Eigen::MatrixXd differences = terratraj::testing::centralDifferences(integral, q, 1e-5);
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      const double fd = differences(0, i);
       // The state-dependent cost reads the attitude's Jacobian, only piecewise smooth on a
       // bicubic surface: there even RK4's exact discrete derivative and its own central
       // differences differ by 2.5e-5 (relative).

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "boundary_value_fixtures.hpp"
+#include "common/finite_difference.hpp"
 #include "dubins_length.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/rocker_bogie_attitude_model.hpp"
@@ -91,34 +92,29 @@ void expectDerivativesMatch(TranscriptionNlp& nlp, const Eigen::VectorXd& x, dou
     }
     return Eigen::VectorXd(sigma * nlp.gradient() + j.transpose() * lambda);
   };
-  Eigen::MatrixXd hessian_fd(nlp.variableCount(), nlp.variableCount());
+  // Row 0: the objective; rows 1..m: the constraints.
+  const auto objective_and_constraints = [&](const Eigen::VectorXd& at) {
+    EXPECT_TRUE(nlp.evaluate(at.data())) << nlp.message();
+    Eigen::VectorXd out(1 + nlp.constraintCount());
+    out << nlp.objective(), nlp.constraints();
+    return out;
+  };
+  const Eigen::MatrixXd differences = terratraj::testing::centralDifferences(
+      objective_and_constraints, x, 1e-6, terratraj::testing::StepScale::kRelative);
   double worst_gradient = 0.0, worst_jacobian = 0.0;
   for (int i = 0; i < nlp.variableCount(); ++i) {
-    const double h = 1e-6 * (1.0 + std::abs(x(i)));
-    Eigen::VectorXd plus = x, minus = x;
-    plus(i) += h;
-    minus(i) -= h;
-    ASSERT_TRUE(nlp.evaluate(plus.data())) << nlp.message();
-    const double f_plus = nlp.objective();
-    const Eigen::VectorXd g_plus = nlp.constraints();
-    ASSERT_TRUE(nlp.evaluate(minus.data())) << nlp.message();
-    const double fd = (f_plus - nlp.objective()) / (2.0 * h);
-    const Eigen::VectorXd column = (g_plus - nlp.constraints()) / (2.0 * h);
+    const double fd = differences(0, i);
+    const Eigen::VectorXd column = differences.col(i).tail(nlp.constraintCount());
     worst_gradient = std::max(worst_gradient, std::abs(fd - gradient(i)) / (1.0 + std::abs(fd)));
     worst_jacobian = std::max(
         worst_jacobian,
         ((column - jacobian.col(i)).array().abs() / (1.0 + column.array().abs())).maxCoeff());
-    if (nlp.hasExactHessian()) {
-      const double hh = 1e-5 * (1.0 + std::abs(x(i)));
-      Eigen::VectorXd p2 = x, m2 = x;
-      p2(i) += hh;
-      m2(i) -= hh;
-      hessian_fd.col(i) = (lagrangianGradient(p2) - lagrangianGradient(m2)) / (2.0 * hh);
-    }
   }
   EXPECT_LT(worst_gradient, tolerance);
   EXPECT_LT(worst_jacobian, tolerance);
   if (!nlp.hasExactHessian()) return;
+  const Eigen::MatrixXd hessian_fd = terratraj::testing::centralDifferences(
+      lagrangianGradient, x, 1e-5, terratraj::testing::StepScale::kRelative);
   std::vector<double> values(nlp.hessianRows().size());
   ASSERT_TRUE(nlp.hessian(x.data(), sigma, lambda.data(), values.data()));
   Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(nlp.variableCount(), nlp.variableCount());

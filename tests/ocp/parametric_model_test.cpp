@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "common/finite_difference.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/rocker_bogie_attitude_model.hpp"
 #include "terratraj/ocp/flat_ground_model.hpp"
@@ -44,27 +45,27 @@ TEST(ParametricControls, DerivativesMatchFiniteDifferences) {
     const ControlRates r = controls.rates(t, dvd.data(), dwd.data());
     // Rates against time differences.
     const double h = 1e-6;
-    double v1, w1, v0, w0;
-    controls.evaluate(t + h, v1, w1, nullptr, nullptr);
-    controls.evaluate(t - h, v0, w0, nullptr, nullptr);
-    EXPECT_NEAR(r.v_dot, (v1 - v0) / (2 * h), 1e-6);
-    EXPECT_NEAR(r.omega_dot, (w1 - w0) / (2 * h), 1e-6);
-    for (int k = 0; k < n; ++k) {
-      Eigen::VectorXd qp = q, qm = q;
-      qp(k) += h;
-      qm(k) -= h;
-      controls.setParameters(qp);
-      controls.evaluate(t, v1, w1, nullptr, nullptr);
-      const ControlRates rp = controls.rates(t, nullptr, nullptr);
-      controls.setParameters(qm);
-      controls.evaluate(t, v0, w0, nullptr, nullptr);
-      const ControlRates rm = controls.rates(t, nullptr, nullptr);
+    const auto by_time = [&](const Eigen::VectorXd& at) {
+      double v_at, omega_at;
+      controls.evaluate(at(0), v_at, omega_at, nullptr, nullptr);
+      return Eigen::Vector2d(v_at, omega_at);
+    };
+    EXPECT_TRUE(terratraj::testing::matchesFiniteDifferences(
+        Eigen::Vector2d(r.v_dot, r.omega_dot),
+        terratraj::testing::centralDifferences(by_time, Eigen::VectorXd::Constant(1, t), h), 1e-6));
+    // (v, omega, v', omega') by the parameters.
+    const auto by_parameters = [&](const Eigen::VectorXd& at) {
+      double v_at, omega_at;
+      controls.setParameters(at);
+      controls.evaluate(t, v_at, omega_at, nullptr, nullptr);
+      const ControlRates rates_at = controls.rates(t, nullptr, nullptr);
       controls.setParameters(q);
-      EXPECT_NEAR(dv(k), (v1 - v0) / (2 * h), 1e-6) << k;
-      EXPECT_NEAR(dw(k), (w1 - w0) / (2 * h), 1e-6) << k;
-      EXPECT_NEAR(dvd(k), (rp.v_dot - rm.v_dot) / (2 * h), 1e-6) << k;
-      EXPECT_NEAR(dwd(k), (rp.omega_dot - rm.omega_dot) / (2 * h), 1e-6) << k;
-    }
+      return Eigen::Vector4d(v_at, omega_at, rates_at.v_dot, rates_at.omega_dot);
+    };
+    Eigen::MatrixXd analytic(4, n);
+    analytic << dv.transpose(), dw.transpose(), dvd.transpose(), dwd.transpose();
+    EXPECT_TRUE(terratraj::testing::matchesFiniteDifferences(
+        analytic, terratraj::testing::centralDifferences(by_parameters, q, h), 1e-6));
   }
 }
 
@@ -115,16 +116,19 @@ TEST_F(RoughTerrain, SensitivityDerivativesMatchFiniteDifferences) {
       ParametricEvaluation discrete, adaptive;
       ASSERT_TRUE(rk4.evaluate(q, DerivativeMode::kSensitivity, discrete)) << discrete.message;
       ASSERT_TRUE(cvodes.evaluate(q, DerivativeMode::kSensitivity, adaptive)) << adaptive.message;
-      const double h = 1e-5;
+      // Rows: the terminal state (3), then the cost.
+      const auto state_and_cost = [&](const Eigen::VectorXd& at) {
+        ParametricEvaluation e;
+        EXPECT_TRUE(rk4.evaluate(at, DerivativeMode::kNone, e)) << e.message;
+        Eigen::Vector4d out;
+        out << e.terminal_state, e.cost;
+        return out;
+      };
+      const Eigen::MatrixXd differences =
+          terratraj::testing::centralDifferences(state_and_cost, q, 1e-5);
       for (int k = 0; k < q.size(); ++k) {
-        Eigen::VectorXd qp = q, qm = q;
-        qp(k) += h;
-        qm(k) -= h;
-        ParametricEvaluation ep, em;
-        ASSERT_TRUE(rk4.evaluate(qp, DerivativeMode::kNone, ep));
-        ASSERT_TRUE(rk4.evaluate(qm, DerivativeMode::kNone, em));
-        const Eigen::Vector3d dc = (ep.terminal_state - em.terminal_state) / (2 * h);
-        const double dj = (ep.cost - em.cost) / (2 * h);
+        const Eigen::Vector3d dc = differences.col(k).head<3>();
+        const double dj = differences(3, k);
         const double scale = std::max(1.0, dc.norm());
         // t_f also stretches RK4's steps, which the continuous-time t_f column leaves out:
         // there the discrete map differs by the discretisation error.

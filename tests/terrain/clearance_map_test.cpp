@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "common/finite_difference.hpp"
+
 namespace terratraj::terrain {
 namespace {
 
@@ -40,15 +42,11 @@ TEST(ClearanceMap, GradientMatchesDifferencesAndOffMapIsEmpty) {
   for (const Eigen::Vector2d& p : {Eigen::Vector2d(3.1, 4.2), Eigen::Vector2d(12.3, 9.9)}) {
     const std::optional<Clearance> c = clearance.at(p);
     ASSERT_TRUE(c.has_value());
-    const double h = 1e-6;
-    const double dx = (clearance.at(p + Eigen::Vector2d(h, 0))->distance -
-                       clearance.at(p - Eigen::Vector2d(h, 0))->distance) /
-                      (2 * h);
-    const double dy = (clearance.at(p + Eigen::Vector2d(0, h))->distance -
-                       clearance.at(p - Eigen::Vector2d(0, h))->distance) /
-                      (2 * h);
-    EXPECT_NEAR(c->gradient.x(), dx, 1e-6);
-    EXPECT_NEAR(c->gradient.y(), dy, 1e-6);
+    const auto distance = [&](const Eigen::VectorXd& at) {
+      return Eigen::VectorXd::Constant(1, clearance.at(Eigen::Vector2d(at))->distance);
+    };
+    EXPECT_TRUE(terratraj::testing::matchesFiniteDifferences(
+        c->gradient.transpose(), terratraj::testing::centralDifferences(distance, p, 1e-6), 1e-6));
   }
   EXPECT_FALSE(clearance.at({-1.0, 2.0}).has_value());
   EXPECT_FALSE(clearance.at({NAN, 2.0}).has_value());

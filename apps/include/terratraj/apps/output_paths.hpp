@@ -21,6 +21,11 @@ void ensureWritableFolder(const std::filesystem::path& folder, const std::string
 /// Checks that `folder` exists and can be read. Throws InputError naming `option` otherwise.
 void ensureReadableFolder(const std::filesystem::path& folder, const std::string& option);
 
+/// The CLI's cache directory (the motion primitives): $TERRATRAJ_CACHE_DIR, else
+/// $XDG_CACHE_HOME/terratraj, else $HOME/.cache/terratraj; empty when none of them is set (no
+/// cache: primitives are generated every time, and the log says so).
+std::filesystem::path primitiveCacheDirectory();
+
 /// Writes `json` to `file` (its folder created) with `indent`. Throws InputError naming the file
 /// when it cannot be written.
 void writeJsonFile(const nlohmann::json& json, const std::filesystem::path& file, int indent = 2);

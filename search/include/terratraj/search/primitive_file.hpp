@@ -27,10 +27,6 @@ void writePrimitiveFile(const PrimitiveSet& set, const std::filesystem::path& pa
 /// (PrimitiveSet::checkAgainst).
 PrimitiveSet readPrimitiveFile(const std::filesystem::path& path);
 
-/// Where the default primitive cache lives: $TERRATRAJ_CACHE_DIR, else $XDG_CACHE_HOME/terratraj,
-/// else $HOME/.cache/terratraj; empty when none of them is set.
-std::filesystem::path primitiveCacheDirectory();
-
 /// The cache file name for a lattice, vehicle limits and generation options: a hash of every
 /// value generation depends on ("primitives-<hex>.json").
 std::string primitiveCacheName(const LatticeSpec& lattice, const models::VehicleLimits& limits,
@@ -56,11 +52,14 @@ struct LoadedPrimitives {
 
 /// The primitives for `lattice` and `limits`: from `file` when given (it must exist and match
 /// the lattice and limits: InputError otherwise, naming the file and what differs), else from
-/// the cache when a matching entry exists, else generated and cached. Throws InputError when
-/// generation leaves a heading without primitives.
+/// the cache in `cache_dir` when a matching entry exists (primitiveCacheName), else generated
+/// and written there. An empty `cache_dir` means no cache (the caller chooses the directory:
+/// the CLI's is apps::primitiveCacheDirectory). Throws InputError when generation leaves a
+/// heading without primitives.
 LoadedPrimitives loadOrGeneratePrimitives(const LatticeSpec& lattice,
                                           const models::VehicleLimits& limits,
                                           const PrimitiveGenerationOptions& options,
-                                          const std::filesystem::path& file = {});
+                                          const std::filesystem::path& file = {},
+                                          const std::filesystem::path& cache_dir = {});
 
 }  // namespace terratraj::search
