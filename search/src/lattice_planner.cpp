@@ -101,38 +101,38 @@ class AraStarSearch {
     nodes_[current].closed_round = round_;
     const LatticeState s = nodes_[current].state;
     const double g = nodes_[current].g;
-    const std::uint64_t s_key = graph_.key(s);
     ++expansions_;
-    const int edges = graph_.edgeCount(s);
-    for (int e = 0; e < edges; ++e) {
-      const LatticeState t = graph_.target(s, e);
-      if (!graph_.onLattice(t)) continue;
-      const detail::CachedEdge& edge = cache_.get(s, s_key, e, stats_, nullptr);
-      if (!std::isfinite(edge.cost)) continue;
-      const double g2 = g + edge.cost;
-      if (g2 >= best_goal_g_) continue;  // cannot lead to a better path (h >= 0)
-      const std::int32_t next = detail::findOrAddNode(index_, nodes_, graph_.key(t), t);
-      SearchNode& m = nodes_[next];
-      if (!(g2 < m.g)) continue;
-      m.g = g2;
-      m.parent = current;
-      m.edge = e;
-      ++stats_.generated;
-      if (graph_.inGoal(t)) {
-        best_goal_g_ = g2;
-        best_goal_ = next;
-        if (stop_at_first) return;
-        continue;
-      }
-      if (m.closed_round == round_) {
-        if (!m.in_incons) {
-          m.in_incons = true;
-          incons_.push_back(next);
-        }
-      } else {
-        open_.push({g2 + epsilon_ * graph_.heuristic(t), g2, next});
-      }
+    detail::forEachValidEdge(graph_, cache_, s, stats_, nullptr,
+                             [&](int e, const LatticeState& t, const detail::CachedEdge& edge) {
+                               return relax(current, g + edge.cost, e, t, stop_at_first);
+                             });
+  }
+
+  // Offers `t` the cost `g2` through edge `e` of `current`; false to stop the expansion (the
+  // first goal, when the condition stops there).
+  bool relax(std::int32_t current, double g2, int e, const LatticeState& t, bool stop_at_first) {
+    if (g2 >= best_goal_g_) return true;  // cannot lead to a better path (h >= 0)
+    const std::int32_t next = detail::findOrAddNode(index_, nodes_, graph_.key(t), t);
+    SearchNode& m = nodes_[next];
+    if (!(g2 < m.g)) return true;
+    m.g = g2;
+    m.parent = current;
+    m.edge = e;
+    ++stats_.generated;
+    if (graph_.inGoal(t)) {
+      best_goal_g_ = g2;
+      best_goal_ = next;
+      return !stop_at_first;
     }
+    if (m.closed_round == round_) {
+      if (!m.in_incons) {
+        m.in_incons = true;
+        incons_.push_back(next);
+      }
+    } else {
+      open_.push({g2 + epsilon_ * graph_.heuristic(t), g2, next});
+    }
+    return true;
   }
 
   const LatticeGraph& graph_;

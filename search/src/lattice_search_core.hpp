@@ -3,6 +3,7 @@
 // priority-queue entries and path reconstruction.
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <queue>
@@ -100,6 +101,25 @@ inline std::int32_t findOrAddNode(FlatHashMap<std::int32_t>& index, std::vector<
     nodes.back().klass = klass;
   }
   return *slot;
+}
+
+/// The relaxation step both searches share: calls visit(e, t, edge) for every edge `e` of `s`
+/// whose target `t` stays on the lattice and whose evaluation (through `cache`, which counts in
+/// `stats`; `frames` adds TAEASL's crossings, null otherwise) is valid. `visit` returns false
+/// to stop early.
+template <typename Visit>
+void forEachValidEdge(const LatticeGraph& graph, EdgeCache& cache, const LatticeState& s,
+                      SearchStatistics& stats, const ReferenceFramesAdapter* frames,
+                      Visit&& visit) {
+  const std::uint64_t key = graph.key(s);
+  const int edges = graph.edgeCount(s);
+  for (int e = 0; e < edges; ++e) {
+    const LatticeState t = graph.target(s, e);
+    if (!graph.onLattice(t)) continue;
+    const CachedEdge& edge = cache.get(s, key, e, stats, frames);
+    if (!std::isfinite(edge.cost)) continue;
+    if (!visit(e, t, edge)) return;
+  }
 }
 
 /// Why a lattice search that exhausted every reachable state found no path: not a proof that the

@@ -219,41 +219,42 @@ class TaeaslSearch {
     const LatticeState s = nodes_[current].state;
     const double g = nodes_[current].g;
     if (g + graph_.heuristic(s) >= bound_) return;  // cannot reach a wanted class
-    const std::uint64_t s_key = graph_.key(s);
     ++expansions_;
-    const int edges = graph_.edgeCount(s);
-    for (int e = 0; e < edges; ++e) {
-      const LatticeState t = graph_.target(s, e);
-      if (!graph_.onLattice(t)) continue;
-      const detail::CachedEdge& edge = cache_.get(s, s_key, e, stats_, &adapter_);
-      if (!std::isfinite(edge.cost)) continue;
-      const double g2 = g + edge.cost;
-      const std::int32_t next_class = successorClass(klass, edge);
-      if (next_class < 0) continue;
-      const bool goal = graph_.inGoal(t);
-      if (goal ? g2 >= classes_[next_class].best_goal_g : g2 + graph_.heuristic(t) >= bound_) {
-        continue;
-      }
-      const std::int32_t next =
-          detail::findOrAddNode(index_, nodes_, nodeKey(t, next_class), t, next_class);
-      SearchNode& m = nodes_[next];
-      if (!(g2 < m.g)) continue;
-      m.g = g2;
-      m.parent = current;
-      m.edge = e;
-      ++stats_.generated;
-      HomotopyClass& c = classes_[next_class];
-      if (goal) {
-        c.best_goal = next;
-        c.best_goal_g = g2;
-        c.found_ms = millisecondsSince(started);
-        if (!result.first_solution_ms) result.first_solution_ms = c.found_ms;
-        bound_ = kthCandidateCost();
-        continue;
-      }
-      c.open.push({g2 + w_ * graph_.heuristic(t), g2, next});
-      activate(next_class);
+    detail::forEachValidEdge(graph_, cache_, s, stats_, &adapter_,
+                             [&](int e, const LatticeState& t, const detail::CachedEdge& edge) {
+                               const std::int32_t next_class = successorClass(klass, edge);
+                               if (next_class >= 0)
+                                 relax(current, g + edge.cost, e, t, next_class, started, result);
+                               return true;
+                             });
+  }
+
+  // Offers `t` in class `next_class` the cost `g2` through edge `e` of `current`.
+  void relax(std::int32_t current, double g2, int e, const LatticeState& t, std::int32_t next_class,
+             Clock::time_point started, PlanResult& result) {
+    const bool goal = graph_.inGoal(t);
+    if (goal ? g2 >= classes_[next_class].best_goal_g : g2 + graph_.heuristic(t) >= bound_) {
+      return;
     }
+    const std::int32_t next =
+        detail::findOrAddNode(index_, nodes_, nodeKey(t, next_class), t, next_class);
+    SearchNode& m = nodes_[next];
+    if (!(g2 < m.g)) return;
+    m.g = g2;
+    m.parent = current;
+    m.edge = e;
+    ++stats_.generated;
+    HomotopyClass& c = classes_[next_class];
+    if (goal) {
+      c.best_goal = next;
+      c.best_goal_g = g2;
+      c.found_ms = millisecondsSince(started);
+      if (!result.first_solution_ms) result.first_solution_ms = c.found_ms;
+      bound_ = kthCandidateCost();
+      return;
+    }
+    c.open.push({g2 + w_ * graph_.heuristic(t), g2, next});
+    activate(next_class);
   }
 
   const LatticeGraph& graph_;
