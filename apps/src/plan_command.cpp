@@ -7,6 +7,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "message_number.hpp"
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/output_paths.hpp"
 #include "terratraj/apps/plot_writer.hpp"
@@ -33,15 +34,7 @@
 namespace terratraj::apps {
 
 using bench::jsonNumber;
-namespace {
-
-std::string formatNumber(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 namespace {
 

@@ -3,18 +3,13 @@
 #include <algorithm>
 #include <sstream>
 
+#include "message_number.hpp"
 #include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/terrain/input_error.hpp"
 
 namespace terratraj::apps {
 namespace {
-
-std::string formatNumber(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
 
 ocp::VehicleState toState(const BoundaryState& s) { return {s.x, s.y, s.heading, s.v, s.omega}; }
 

@@ -15,9 +15,7 @@
 #include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
-#include "terratraj/search/taeasl_planner.hpp"
 #include "terratraj/terrain/input_error.hpp"
-#include "terratraj/terrain/obstacle_clusters.hpp"
 
 namespace terratraj::apps {
 

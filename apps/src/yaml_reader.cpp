@@ -12,21 +12,11 @@ namespace terratraj::apps::yaml_reader {
 namespace {
 
 constexpr const char* kYamlStringTag = "tag:yaml.org,2002:str";
-constexpr int kMessageDigits = 6;  // significant digits of numbers in messages
 
 }  // namespace
 
 // ------------------------------------------------------------------------------------------
 // Messages.
-
-// A number for a message: up to kMessageDigits significant digits ("0", "1.5708").
-std::string formatNumber(double value) {
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out.precision(kMessageDigits);
-  out << value;
-  return out.str();
-}
 
 // A coordinate [m] for a message: as formatNumber(), with ".0" on whole numbers ("512.0").
 std::string formatCoordinate(double value) {

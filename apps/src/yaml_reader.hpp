@@ -16,13 +16,14 @@
 #include <utility>
 #include <vector>
 
+#include "message_number.hpp"
 #include "terratraj/models/vehicle_limits.hpp"
 #include "terratraj/terrain/input_error.hpp"
 
 namespace terratraj::apps::yaml_reader {
 
-// A number for a message: up to 6 significant digits ("0", "1.5708").
-std::string formatNumber(double value);
+// A number for a message: up to 6 significant digits ("0", "1.5708"; message_number.hpp).
+using apps::formatNumber;
 // A coordinate [m] for a message: as formatNumber(), with ".0" on whole numbers ("512.0").
 std::string formatCoordinate(double value);
 std::string inQuotes(std::string_view text);
