@@ -1,5 +1,5 @@
 #pragma once
-// What the planner benchmarks share: search::BenchmarkWorld (generated maps, the example
+// What the planner benchmarks share: bench::BenchmarkWorld (generated maps, the example
 // limits, start and goal on moderate ground) under short names, a tally of the independent
 // re-checks (failures named, so that none goes unseen), and main().
 
@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "terratraj/search/benchmark_world.hpp"
+#include "terratraj/bench/benchmark_world.hpp"
 #include "terratraj/search/planning_problem.hpp"
 #include "terratraj/search/trajectory_checker.hpp"
 #include "terratraj/terrain/terrain_generator.hpp"
@@ -21,17 +21,17 @@
 
 namespace terratraj::bench {
 
-inline constexpr double kCell = search::kBenchmarkCell;  ///< [m]
+inline constexpr double kCell = bench::kBenchmarkCell;  ///< [m]
 /// The problem files' limits; pitch_max is the expansiveness knob.
 inline models::VehicleLimits exampleLimits(double pitch_max_deg = 17.0) {
-  return search::benchmarkLimits(pitch_max_deg);
+  return bench::benchmarkLimits(pitch_max_deg);
 }
-using Vehicle = search::BenchmarkVehicle;
-inline const char* vehicleName(Vehicle vehicle) { return search::benchmarkVehicleName(vehicle); }
+using Vehicle = bench::BenchmarkVehicle;
+inline const char* vehicleName(Vehicle vehicle) { return bench::benchmarkVehicleName(vehicle); }
 inline terrain::ElevationMap generate(terrain::TerrainKind kind, int size, std::uint64_t seed) {
-  return search::generateBenchmarkMap(kind, size, seed);
+  return bench::generateBenchmarkMap(kind, size, seed);
 }
-using World = search::BenchmarkWorld;
+using World = bench::BenchmarkWorld;
 
 /// Collects checker outcomes; failures are named in label() ("limit x count, worst amount").
 class CheckTally {

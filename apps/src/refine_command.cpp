@@ -5,13 +5,13 @@
 
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/output_paths.hpp"
-#include "terratraj/apps/plan_command.hpp"
 #include "terratraj/apps/plot_writer.hpp"
 #include "terratraj/apps/problem_commands.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/apps/problem_translation.hpp"
-#include "terratraj/apps/solve_command.hpp"
+#include "terratraj/apps/report_json.hpp"
+#include "terratraj/apps/verdict_json.hpp"
 #include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
@@ -20,57 +20,6 @@
 namespace terratraj::apps {
 
 using bench::jsonNumber;
-namespace {
-
-// The largest limit, table or map violation of a refined trajectory, from the verdict's check
-// (null before a re-simulation).
-nlohmann::json refinedViolation(const refine::RefinementResult& r) {
-  if (!r.refined_figures) return nullptr;
-  return ocp::largestLimitViolation(r.verdict.check).first;
-}
-
-}  // namespace
-
-nlohmann::json trajectoryFiguresJson(const refine::TrajectoryFigures& f) {
-  return {{"cost", jsonNumber(f.cost)},
-          {"duration_s", jsonNumber(f.duration_s)},
-          {"length_m", jsonNumber(f.length_m)},
-          {"max_abs_pitch_rad", jsonNumber(f.max_abs_pitch)},
-          {"max_abs_roll_rad", jsonNumber(f.max_abs_roll)},
-          {"max_speed", jsonNumber(f.max_speed)},
-          {"min_clearance_m", jsonNumber(f.min_clearance_m)},
-          {"constraint_violation", f.check.max_violation},
-          {"check", checkReportJson(f.check)},
-          {"homotopy", f.homotopy}};
-}
-
-nlohmann::json refinedSolutionJson(const refine::RefinementResult& r,
-                                   const std::optional<std::filesystem::path>& file) {
-  nlohmann::json json{{"status", ocp::solveStatusName(r.status)},
-                      {"reason", r.reason},
-                      {"cost_s", nullptr},
-                      {"cost", nullptr},
-                      {"file", file ? nlohmann::json(file->string()) : nlohmann::json(nullptr)},
-                      {"method", refine::refineMethodName(r.method)},
-                      {"method_rule", r.method_rule},
-                      {"iterations", r.iterations},
-                      {"solve_time_ms", r.solve_time_ms},
-                      {"intervals", r.intervals},
-                      {"clearance_constraint_m", r.clearance_used_m},
-                      {"margin_rounds", r.margin_rounds},
-                      {"guess_shortcut_m", r.guess_shortcut_m},
-                      {"coarse_intervals", r.coarse_intervals},
-                      {"corridor_radius_m", r.corridor_radius_m},
-                      {"homotopy", nullptr},
-                      {"homotopy_kept", r.homotopy_kept},
-                      {"cost_ratio", jsonNumber(r.costRatio())}};
-  if (r.refined_figures) {
-    json.update(trajectoryFiguresJson(*r.refined_figures));
-    json["cost_s"] = jsonNumber(r.refined_figures->duration_s);
-    json["constraint_violation"] = refinedViolation(r);
-  }
-  return json;
-}
 
 nlohmann::json refineReportJson(const refine::RefinementResult& r,
                                 const refine::RefinementOptions& options,

@@ -11,6 +11,7 @@
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/apps/problem_translation.hpp"
+#include "terratraj/apps/report_json.hpp"
 #include "terratraj/apps/verdict_json.hpp"
 #include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/segway_lookups.hpp"
@@ -28,42 +29,6 @@ namespace terratraj::apps {
 
 using bench::attemptsJson;
 using bench::jsonNumber;
-namespace {}  // namespace
-
-nlohmann::json iterationHistoryJson(const std::vector<ocp::IterationRecord>& history,
-                                    bool heading_error) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (const ocp::IterationRecord& r : history) {
-    nlohmann::json row{{"iteration", r.iteration},
-                       {"terminal_error", jsonNumber(r.terminal_error)},
-                       {"cost", jsonNumber(r.cost)},
-                       {"lagrangian_gradient", jsonNumber(r.lagrangian_gradient)},
-                       {"step", jsonNumber(r.step)}};
-    if (heading_error) row["heading_error"] = jsonNumber(r.heading_error);
-    rows.push_back(std::move(row));
-  }
-  return rows;
-}
-
-nlohmann::json verifiedTrajectoryJson(const ocp::VerifiedTrajectory& v) {
-  return {
-      {"final_time_s", v.ok ? jsonNumber(v.final_time) : nullptr},
-      {"cost", v.ok ? jsonNumber(v.cost) : nullptr},
-      {"length_m", v.ok ? jsonNumber(v.length) : nullptr},
-      {"terminal_error",
-       {{"position_m", v.ok ? jsonNumber(v.terminal_error.head<2>().norm()) : nullptr},
-        {"heading_rad", v.ok ? jsonNumber(std::abs(v.terminal_error.z())) : nullptr}}},
-      {"max_abs_pitch_rad", jsonNumber(v.max_abs_pitch)},
-      {"max_abs_roll_rad", jsonNumber(v.max_abs_roll)},
-      {"max_speed", jsonNumber(v.max_speed)},
-      {"constraint_violation", jsonNumber(v.violation.amount)},
-      {"violated_limit",
-       v.violation.limit.empty() ? nlohmann::json(nullptr) : nlohmann::json(v.violation.limit)},
-      {"slope_dwell_rad2_s", jsonNumber(v.slope_dwell)},
-      {"verified", v.ok},
-  };
-}
-
 namespace {
 
 // The human-readable lines of a re-simulated trajectory.
@@ -283,10 +248,8 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
   if (options.guess) {
     // A user's guess: the transcription from it alone.
     const models::Trajectory candidate = models::readTrajectoryCsv(*options.guess);
-    std::string why;
-    const std::optional<ocp::TranscriptionGuess> guess =
-        ocp::guessFromCandidate(candidate, bvp, &why);
-    if (!guess) throw InputError(options.guess->string() + ": " + why);
+    const Expected<ocp::TranscriptionGuess> guess = ocp::guessFromCandidate(candidate, bvp);
+    if (!guess) throw InputError(options.guess->string() + ": " + guess.reason());
     ocp::TranscriptionSolveOptions solve = seeded.transcription;
     solve.criteria = seeded.parametric.criteria;
     solve.map = &map;

@@ -12,12 +12,12 @@
 #include <sstream>
 
 #include "terratraj/bench/benchmark_suite.hpp"
+#include "terratraj/bench/problem_sets.hpp"
 #include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/rocker_bogie_attitude_model.hpp"
 #include "terratraj/ocp/boundary_value_solver.hpp"
 #include "terratraj/ocp/direct_transcription.hpp"
-#include "terratraj/ocp/problem_sets.hpp"
 #include "terratraj/ocp/trajectory_verifier.hpp"
 #include "terratraj/ocp/transcription_guess.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
@@ -28,7 +28,7 @@
 namespace terratraj::bench {
 namespace {
 
-namespace sets = ocp::problem_sets;
+namespace sets = bench::problem_sets;
 
 // collocation_refined: Hermite-Simpson with up to 3 rounds of mesh refinement (intervals whose
 // local error exceeds 1e-4 split): the same formulation at a setting that trades time for the
@@ -159,11 +159,11 @@ nlohmann::json transcriptionRow(const ProblemSetData& data,
   const auto started = std::chrono::steady_clock::now();
   nlohmann::json row;
   // The same information as the parametric solvers: start and goal, a straight-line guess.
-  const std::optional<ocp::TranscriptionGuess> guess = ocp::guessFromPath(
+  const Expected<ocp::TranscriptionGuess> guess = ocp::guessFromPath(
       {{problem.start.x, problem.start.y}, {problem.goal.x, problem.goal.y}}, problem);
   if (!guess) {
     row["status"] = "error";
-    row["reason"] = "no straight-line guess";
+    row["reason"] = "no straight-line guess: " + guess.reason();
     return row;
   }
   ocp::TranscriptionSolution solution =

@@ -4,13 +4,33 @@
 
 namespace terratraj::bench {
 
+namespace {
+const char* const kUnavailable = "unavailable: built with -DTERRATRAJ_WITH_OMPL=OFF";
+}  // namespace
+
 bool omplPeersAvailable() { return false; }
 
-OmplRun runOmplPeer(const search::PlanningProblem& /*problem*/, OmplPlanner /*planner*/,
-                    double /*budget_s*/, std::uint64_t /*seed*/) {
-  OmplRun run;
-  run.status = "unavailable: built with -DTERRATRAJ_WITH_OMPL=OFF";
-  return run;
+struct OmplPeerPlanner::Impl {
+  OmplPlanner kind;
+  std::string status = kUnavailable;
+};
+
+OmplPeerPlanner::OmplPeerPlanner(const search::PlanningProblem& /*problem*/, OmplPlanner planner,
+                                 std::uint64_t /*seed*/)
+    : impl_(std::make_unique<Impl>(Impl{planner})) {}
+
+OmplPeerPlanner::~OmplPeerPlanner() = default;
+
+const char* OmplPeerPlanner::name() const { return omplPlannerName(impl_->kind); }
+
+search::PlanResult OmplPeerPlanner::solve(search::TerminationCondition /*termination*/) {
+  search::PlanResult result;
+  result.reason = kUnavailable;
+  return result;
 }
+
+void OmplPeerPlanner::clear() {}
+
+const std::string& OmplPeerPlanner::omplStatus() const { return impl_->status; }
 
 }  // namespace terratraj::bench

@@ -10,10 +10,10 @@
 #include <tuple>
 
 #include "terratraj/bench/benchmark_suite.hpp"
+#include "terratraj/bench/benchmark_world.hpp"
 #include "terratraj/bench/ompl_peer.hpp"
 #include "terratraj/bench/report_json.hpp"
 #include "terratraj/search/bang_bang_bound.hpp"
-#include "terratraj/search/benchmark_world.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/lattice_graph.hpp"
 #include "terratraj/search/lattice_planner.hpp"
@@ -89,7 +89,7 @@ void addCheck(nlohmann::json& row, const search::PlanningProblem& problem,
   row["violations"] = violations;
 }
 
-nlohmann::json prmRow(const search::BenchmarkWorld& w, std::uint64_t seed, double budget_s) {
+nlohmann::json prmRow(const bench::BenchmarkWorld& w, std::uint64_t seed, double budget_s) {
   search::PrmOptions options;
   options.seed = seed;
   search::KinodynamicPrm planner(w.problem, options);
@@ -113,35 +113,36 @@ nlohmann::json prmRow(const search::BenchmarkWorld& w, std::uint64_t seed, doubl
   return row;
 }
 
-// An OMPL peer on the same problem, its solution re-checked like the PRM's. cost_1s comes from
-// OMPL's control durations; cost_final_s is the re-integrated trajectory's duration.
-nlohmann::json omplRow(const search::BenchmarkWorld& w, OmplPlanner planner, std::uint64_t seed,
+// An OMPL peer on the same problem, through the same interface and verdict as the PRM; its
+// solution re-checked like the PRM's. cost_1s comes from OMPL's control durations;
+// cost_final_s is the re-integrated trajectory's duration. `status` is OMPL's own text,
+// `solved` the verdict's (rejected solutions listed with their reason).
+nlohmann::json omplRow(const bench::BenchmarkWorld& w, OmplPlanner kind, std::uint64_t seed,
                        double budget_s) {
-  const OmplRun r = runOmplPeer(w.problem, planner, budget_s, seed);
-  nlohmann::json row = {
-      {"status", r.status},
-      {"solved", r.solved},
-      {"first_ms", r.first_ms ? jsonNumber(*r.first_ms) : nlohmann::json(nullptr)},
-      {"planning_ms", r.planning_ms},
-      {"budget_s", budget_s},
-      {"time_dependent", true}};
-  double at_1s = std::numeric_limits<double>::infinity();
-  for (const auto& [ms, cost] : r.cost_history) {
-    if (ms <= 1000.0) at_1s = cost;
-  }
-  row["cost_1s"] = jsonNumber(at_1s);
-  row["cost_final_s"] = r.solved ? jsonNumber(r.cost_s) : nlohmann::json(nullptr);
-  if (r.solved) addCheck(row, w.problem, r.trajectory);
+  OmplPeerPlanner planner(w.problem, kind, seed);
+  const search::PlanResult r = planner.solve(search::TerminationCondition::timeLimit(budget_s));
+  const bool solved = r.status == search::PlanStatus::kSolved;
+  nlohmann::json row = {{"status", planner.omplStatus()},
+                        {"solved", solved},
+                        {"first_ms", r.first_solution_ms ? jsonNumber(*r.first_solution_ms)
+                                                         : nlohmann::json(nullptr)},
+                        {"planning_ms", r.planning_time_ms},
+                        {"budget_s", budget_s},
+                        {"time_dependent", true}};
+  row["cost_1s"] = costAt(r, 1000.0);
+  row["cost_final_s"] = solved ? jsonNumber(r.best_cost_s) : nlohmann::json(nullptr);
+  if (!r.rejected.empty()) row["rejected"] = r.rejected.front().reason;
+  if (solved) addCheck(row, w.problem, r.trajectory);
   return row;
 }
 
 const search::PrimitiveSet& primitives() {
   static const search::PrimitiveSet set =
-      search::generatePrimitives(search::LatticeSpec{}, search::benchmarkLimits()).set;
+      search::generatePrimitives(search::LatticeSpec{}, bench::benchmarkLimits()).set;
   return set;
 }
 
-nlohmann::json latticeRows(const search::BenchmarkWorld& w, double budget_s) {
+nlohmann::json latticeRows(const bench::BenchmarkWorld& w, double budget_s) {
   const search::LatticeGraph graph(w.problem, primitives());
   if (graph.error()) return {{"status", "error"}, {"reason", *graph.error()}};
   nlohmann::json out;
@@ -310,9 +311,9 @@ class PlannersSuite final : public BenchmarkSuite {
                           {"size", v.size},
                           {"pitch_max_deg", v.pitch_max_deg},
                           {"seed", seed}};
-    search::BenchmarkWorld w(search::generateBenchmarkMap(v.kind, v.size, seed),
-                             search::BenchmarkVehicle::kPoint,
-                             search::benchmarkLimits(v.pitch_max_deg));
+    bench::BenchmarkWorld w(bench::generateBenchmarkMap(v.kind, v.size, seed),
+                            bench::BenchmarkVehicle::kPoint,
+                            bench::benchmarkLimits(v.pitch_max_deg));
     const auto [start, goal] = terrain::standardStartGoal(w.map.geometry());
     if (!w.place(start, goal)) {
       row["status"] = "no start / goal on moderate ground";

@@ -10,10 +10,10 @@
 #include <sstream>
 
 #include "terratraj/bench/benchmark_suite.hpp"
+#include "terratraj/bench/benchmark_world.hpp"
 #include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/refine/candidate_refiner.hpp"
-#include "terratraj/search/benchmark_world.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/lattice_graph.hpp"
 #include "terratraj/search/primitive_generator.hpp"
@@ -37,7 +37,7 @@ std::vector<models::Trajectory> plan(const std::string& planner,
                                      const search::PlanningProblem& problem, std::uint64_t seed,
                                      double budget_s) {
   static const search::PrimitiveSet primitives =
-      search::generatePrimitives(search::LatticeSpec{}, search::benchmarkLimits(kPitchMaxDeg)).set;
+      search::generatePrimitives(search::LatticeSpec{}, bench::benchmarkLimits(kPitchMaxDeg)).set;
   search::TerminationCondition condition = search::TerminationCondition::timeLimit(budget_s);
   if (planner == "prm_first") condition.stopAtFirstSolution();
   std::optional<search::LatticeGraph> graph;
@@ -66,7 +66,7 @@ std::string dumpFailure(const models::Trajectory& candidate, const std::string& 
   return file;
 }
 
-nlohmann::json refineOne(const search::BenchmarkWorld& w, const refine::CandidateRefiner& refiner,
+nlohmann::json refineOne(const bench::BenchmarkWorld& w, const refine::CandidateRefiner& refiner,
                          const search::ReferenceFrames& frames, const models::Trajectory& candidate,
                          const std::string& name) {
   const auto started = std::chrono::steady_clock::now();
@@ -174,9 +174,8 @@ class RefineSuite final : public BenchmarkSuite {
     nlohmann::json row = {{"planner", planner},    {"kind", kind_name},  {"seed", seed},
                           {"map_cells", size},     {"vehicle", "point"}, {"budget_s", budget},
                           {"time_dependent", true}};
-    search::BenchmarkWorld w(search::generateBenchmarkMap(kind, size, seed),
-                             search::BenchmarkVehicle::kPoint,
-                             search::benchmarkLimits(kPitchMaxDeg));
+    bench::BenchmarkWorld w(bench::generateBenchmarkMap(kind, size, seed),
+                            bench::BenchmarkVehicle::kPoint, bench::benchmarkLimits(kPitchMaxDeg));
     const auto [start, goal] = terrain::standardStartGoal(w.map.geometry());
     if (!w.place(start, goal)) {
       row["status"] = "no start / goal on moderate ground";

@@ -16,10 +16,10 @@
 
 #include "terratraj/bench/benchmark_suite.hpp"
 #include "terratraj/bench/report_json.hpp"
+#include "terratraj/bench/robustness_sets.hpp"
 #include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/models/vehicle_factory.hpp"
 #include "terratraj/ocp/dubins_path.hpp"
-#include "terratraj/ocp/robustness_sets.hpp"
 #include "terratraj/refine/seeded_solver.hpp"
 #include "terratraj/terrain/lethal_layer.hpp"
 #include "terratraj/terrain/raster_io.hpp"
@@ -30,7 +30,7 @@ namespace terratraj::bench {
 using models::VehicleModelKind;
 namespace {
 
-namespace sets = ocp::problem_sets;
+namespace sets = bench::problem_sets;
 
 // Multiple shooting is left out: 850+ iterations and the 60 s limit on most turns (see
 // docs/benchmarks.md); `solve --method shooting` still takes the same seeds.

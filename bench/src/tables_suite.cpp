@@ -6,10 +6,10 @@
 #include <sstream>
 
 #include "terratraj/bench/benchmark_suite.hpp"
+#include "terratraj/bench/benchmark_world.hpp"
 #include "terratraj/bench/report_json.hpp"
 #include "terratraj/models/driving_log_simulator.hpp"
 #include "terratraj/models/kinodynamic_tables.hpp"
-#include "terratraj/search/benchmark_world.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/trajectory_checker.hpp"
 
@@ -49,7 +49,7 @@ const Tables& tables(std::uint64_t seed) {
 
 // The 003 vehicle's envelope: fast enough that the tables, not v_max, decide the speed.
 models::VehicleLimits fastLimits() {
-  models::VehicleLimits limits = search::benchmarkLimits(25.0);
+  models::VehicleLimits limits = bench::benchmarkLimits(25.0);
   limits.v_max = 8.0;
   limits.a_max = 1.5;
   limits.omega_max = 2.0;
@@ -167,9 +167,9 @@ class TablesSuite final : public BenchmarkSuite {
                           {"time_dependent", true}};
     const Tables& t = tables(settings_.seed);
     row["log_states"] = t.log_states;
-    search::BenchmarkWorld w(
-        search::generateBenchmarkMap(terrain::TerrainKind::kHills, size, map_seed),
-        search::BenchmarkVehicle::kPoint, fastLimits());
+    bench::BenchmarkWorld w(
+        bench::generateBenchmarkMap(terrain::TerrainKind::kHills, size, map_seed),
+        bench::BenchmarkVehicle::kPoint, fastLimits());
     if (kind == "physics") {
       w.problem.pitch_table = &t.physics_pitch;
       w.problem.roll_curvature_table = &t.physics_roll;

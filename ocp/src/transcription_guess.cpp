@@ -8,10 +8,6 @@ namespace {
 
 using models::TrajectoryColumn;
 
-void setWhy(std::string* why, const std::string& text) {
-  if (why != nullptr) *why = text;
-}
-
 // v' and omega' by differences of v and omega over the samples.
 void differentiateControls(TranscriptionGuess& guess) {
   const std::size_t n = guess.t.size();
@@ -35,19 +31,16 @@ PointVector TranscriptionGuess::at(double time) const {
   return (1.0 - f) * points[i - 1] + f * points[i];
 }
 
-std::optional<TranscriptionGuess> guessFromTrajectory(const models::Trajectory& trajectory,
-                                                      std::string* why) {
+Expected<TranscriptionGuess> guessFromTrajectory(const models::Trajectory& trajectory) {
   for (TrajectoryColumn c : {TrajectoryColumn::kT, TrajectoryColumn::kX, TrajectoryColumn::kY,
                              TrajectoryColumn::kHeading, TrajectoryColumn::kV}) {
     if (!trajectory.has(c)) {
-      setWhy(why,
-             std::string("the trajectory has no '") + models::trajectoryColumnName(c) + "' column");
-      return std::nullopt;
+      return unexpected(std::string("the trajectory has no '") + models::trajectoryColumnName(c) +
+                        "' column");
     }
   }
   if (trajectory.samples.size() < 2) {
-    setWhy(why, "the trajectory has fewer than two samples");
-    return std::nullopt;
+    return unexpected("the trajectory has fewer than two samples");
   }
   TranscriptionGuess guess;
   const double t0 = trajectory.samples.front().t;
@@ -57,9 +50,8 @@ std::optional<TranscriptionGuess> guessFromTrajectory(const models::Trajectory& 
     const double t = s.t - t0;
     if (!std::isfinite(t) || !std::isfinite(s.x) || !std::isfinite(s.y) ||
         !std::isfinite(s.heading) || !std::isfinite(s.v) || (i > 0 && !(t > guess.t.back()))) {
-      setWhy(why, "sample " + std::to_string(i) +
-                      " of the trajectory is not finite or its time does not increase");
-      return std::nullopt;
+      return unexpected("sample " + std::to_string(i) +
+                        " of the trajectory is not finite or its time does not increase");
     }
     // Unwrapped heading: continuous across +-pi.
     if (i > 0)
@@ -86,24 +78,21 @@ std::optional<TranscriptionGuess> guessFromTrajectory(const models::Trajectory& 
   return guess;
 }
 
-std::optional<TranscriptionGuess> guessFromPath(const std::vector<Eigen::Vector2d>& path,
-                                                const BoundaryValueProblem& problem, double spacing,
-                                                std::string* why) {
+Expected<TranscriptionGuess> guessFromPath(const std::vector<Eigen::Vector2d>& path,
+                                           const BoundaryValueProblem& problem, double spacing) {
   // Distinct, finite points and their arc length.
   std::vector<Eigen::Vector2d> points;
   std::vector<double> arc;
   for (const Eigen::Vector2d& p : path) {
     if (!p.allFinite()) {
-      setWhy(why, "the path has a non-finite point");
-      return std::nullopt;
+      return unexpected("the path has a non-finite point");
     }
     if (!points.empty() && (p - points.back()).norm() < 1e-9) continue;
     arc.push_back(points.empty() ? 0.0 : arc.back() + (p - points.back()).norm());
     points.push_back(p);
   }
   if (points.size() < 2 || !(spacing > 0.0)) {
-    setWhy(why, "the path has fewer than two distinct points");
-    return std::nullopt;
+    return unexpected("the path has fewer than two distinct points");
   }
   const double length = arc.back();
   const int segments = std::max(2, static_cast<int>(std::ceil(length / spacing)));
@@ -164,21 +153,19 @@ std::optional<TranscriptionGuess> guessFromPath(const std::vector<Eigen::Vector2
   return guess;
 }
 
-std::optional<TranscriptionGuess> guessFromCandidate(const models::Trajectory& candidate,
-                                                     const BoundaryValueProblem& problem,
-                                                     std::string* why) {
+Expected<TranscriptionGuess> guessFromCandidate(const models::Trajectory& candidate,
+                                                const BoundaryValueProblem& problem) {
   if (candidate.has(TrajectoryColumn::kT) && candidate.has(TrajectoryColumn::kV) &&
       candidate.has(TrajectoryColumn::kHeading)) {
-    return guessFromTrajectory(candidate, why);
+    return guessFromTrajectory(candidate);
   }
   if (!candidate.has(TrajectoryColumn::kX) || !candidate.has(TrajectoryColumn::kY)) {
-    setWhy(why, "the candidate has no x, y columns");
-    return std::nullopt;
+    return unexpected("the candidate has no x, y columns");
   }
   std::vector<Eigen::Vector2d> path;
   path.reserve(candidate.samples.size());
   for (const models::TrajectorySample& s : candidate.samples) path.emplace_back(s.x, s.y);
-  return guessFromPath(path, problem, 0.25, why);
+  return guessFromPath(path, problem, 0.25);
 }
 
 }  // namespace terratraj::ocp

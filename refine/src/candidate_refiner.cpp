@@ -336,12 +336,11 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   }
 
   // 1. Complete the candidate and measure it.
-  std::string why;
-  std::optional<ocp::TranscriptionGuess> guess =
+  Expected<ocp::TranscriptionGuess> guess =
       hasTiming(candidate)
-          ? ocp::guessFromTrajectory(candidate, &why)
-          : ocp::guessFromPath(polyline(candidate), *bvp_, options_.guess_spacing_m, &why);
-  if (!guess) return finish(ocp::SolveStatus::kError, "the candidate: " + why);
+          ? ocp::guessFromTrajectory(candidate)
+          : ocp::guessFromPath(polyline(candidate), *bvp_, options_.guess_spacing_m);
+  if (!guess) return finish(ocp::SolveStatus::kError, "the candidate: " + guess.reason());
   for (std::size_t c = 0; c < models::kTrajectoryColumnCount; ++c) {
     if (!candidate.has_column[c]) {
       out.derived_columns.emplace_back(
@@ -349,6 +348,7 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
     }
   }
   out.candidate = completeCandidate(candidate, *guess);
+  std::string why;
   if (!fillAttitude(*problem_->vehicle, out.candidate, why)) {
     return finish(ocp::SolveStatus::kError, "the candidate: " + why);
   }
@@ -370,8 +370,8 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
     const double length = polylineLength(shortcut);
     if (length < options_.shortcut_gain * before.length_m &&
         frames_->signatureOf(shortcut).toString() == before.homotopy) {
-      if (std::optional<ocp::TranscriptionGuess> shorter =
-              ocp::guessFromPath(shortcut, *bvp_, options_.guess_spacing_m, &why)) {
+      if (Expected<ocp::TranscriptionGuess> shorter =
+              ocp::guessFromPath(shortcut, *bvp_, options_.guess_spacing_m)) {
         guess = std::move(shorter);
         out.guess_shortcut_m = before.length_m - length;
       }

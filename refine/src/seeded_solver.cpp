@@ -75,7 +75,7 @@ std::vector<Seed> dubinsSeeds(const ocp::BoundaryValueProblem& problem,
     std::vector<Eigen::Vector2d> xy;
     xy.reserve(points.size());
     for (const ocp::PathPoint2& p : points) xy.emplace_back(p.x, p.y);
-    std::optional<ocp::TranscriptionGuess> guess =
+    Expected<ocp::TranscriptionGuess> guess =
         ocp::guessFromPath(xy, problem, options.seed_spacing_m);
     if (!guess) continue;
     const double turning =
@@ -152,6 +152,14 @@ const char* coreMethodName(CoreMethod method) {
 }
 
 namespace {
+
+// The transcription guess of a verified trajectory; nothing when it has none (a trajectory
+// with fewer than two samples).
+std::optional<ocp::TranscriptionGuess> guessOrNothing(const models::Trajectory& trajectory) {
+  Expected<ocp::TranscriptionGuess> guess = ocp::guessFromTrajectory(trajectory);
+  if (!guess) return std::nullopt;
+  return std::move(*guess);
+}
 
 // One attempt from one seed (null: the flat heuristic) with one solver.
 SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
@@ -262,7 +270,7 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
     const Clock::time_point t0 = Clock::now();
     SeededSolution step = attempt(vehicle, problem, map, parametric, &seed, deadline.left());
     std::optional<ocp::TranscriptionGuess> guess;
-    if (step.verified.ok) guess = ocp::guessFromTrajectory(step.verified.trajectory);
+    if (step.verified.ok) guess = guessOrNothing(step.verified.trajectory);
     const double length = step.verified.length;
     record(std::move(step), t0, false);
     if (!guess || deadline.over()) return;
@@ -281,7 +289,7 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
       const ocp::BoundaryValueSolution parametric =
           ocp::solveBoundaryValue(vehicle, problem, flat, map);
       std::optional<ocp::TranscriptionGuess> guess;
-      if (parametric.verified.ok) guess = ocp::guessFromTrajectory(parametric.verified.trajectory);
+      if (parametric.verified.ok) guess = guessOrNothing(parametric.verified.trajectory);
       if (!guess) guess = ocp::TranscriptionGuess{};
       const Seed seed{"flat heuristic (004) via newton", parametric.verified.length, *guess, 0.0};
       const Clock::time_point t0 = Clock::now();

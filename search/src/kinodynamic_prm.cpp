@@ -50,6 +50,20 @@ KinodynamicPrm::KinodynamicPrm(const PlanningProblem& problem, const PrmOptions&
   options_.gather_count = std::max(options_.gather_count, options_.candidates);
 }
 
+void KinodynamicPrm::clear() {
+  roadmap_.clear();
+  index_.clear();
+  rng_.seed(options_.seed);
+  best_cost_ = kInfinity;
+  best_node_ = kNoParent;
+  has_best_edge_ = false;
+  alive_nodes_ = 0;
+  pruned_nodes_ = 0;
+  started_ = false;
+  planned_ms_ = 0.0;
+  progress_ = PlanResult{};
+}
+
 double KinodynamicPrm::uniform() {
   // 53 random bits -> [0, 1): the same numbers on every platform (std:: distributions are
   // implementation-defined).
@@ -209,16 +223,14 @@ void KinodynamicPrm::tryGoalConnection(std::int32_t id, double elapsed_ms, PlanR
 
 PlanResult KinodynamicPrm::solve(TerminationCondition condition) {
   condition.start();
+  // What earlier calls found and counted carries on (clear() forgets it).
   PlanResult result;
-  roadmap_.clear();
-  index_.clear();
-  rng_.seed(options_.seed);
-  best_cost_ = kInfinity;
-  best_node_ = kNoParent;
-  has_best_edge_ = false;
-  alive_nodes_ = 0;
-  pruned_nodes_ = 0;
-  const auto elapsed_ms = [&] { return condition.elapsedSeconds() * 1e3; };
+  result.first_solution_ms = progress_.first_solution_ms;
+  result.first_solution_cost_s = progress_.first_solution_cost_s;
+  result.statistics = progress_.statistics;
+  result.cost_history = progress_.cost_history;
+  const double planned_before_ms = planned_ms_;
+  const auto elapsed_ms = [&] { return planned_before_ms + condition.elapsedSeconds() * 1e3; };
 
   std::string stop_reason;
   if (condition.timeLimitSeconds() <= 0.0) {
@@ -226,19 +238,24 @@ PlanResult KinodynamicPrm::solve(TerminationCondition condition) {
   } else if (condition.iterationLimit() == 0) {
     stop_reason = "the iteration limit is 0: no search was run";
   } else {
-    roadmap_.reserve(options_.reserve_nodes);
-    PrmNode root;
-    root.state = problem_->start;
-    addNode(root);
-    if (problem_->goal.contains(root.state)) {
+    const bool fresh = !started_;
+    if (fresh) {
+      roadmap_.reserve(options_.reserve_nodes);
+      PrmNode root;
+      root.state = problem_->start;
+      addNode(root);
+      started_ = true;
+    }
+    const PlannerState start = roadmap_.node(0).state;
+    if (problem_->goal.contains(start)) {
       // Nothing to drive (every planner): the one-row trajectory, at once.
       planStartInGoal(*problem_, result);
       result.nodes = roadmap_.size();
       result.planning_time_ms = elapsed_ms();
       return result;
     }
-    if ((root.state.position - problem_->goal.position).norm() <=
-        options_.goal_connection_radius_m) {
+    if (fresh &&
+        (start.position - problem_->goal.position).norm() <= options_.goal_connection_radius_m) {
       tryGoalConnection(0, elapsed_ms(), result);
     }
     stop_reason = growRoadmap(condition, result);
@@ -259,8 +276,13 @@ PlanResult KinodynamicPrm::solve(TerminationCondition condition) {
     result.status = PlanStatus::kNoSolution;
     result.reason = stop_reason;
   }
+  progress_.first_solution_ms = result.first_solution_ms;
+  progress_.first_solution_cost_s = result.first_solution_cost_s;
+  progress_.statistics = result.statistics;
+  progress_.cost_history = result.cost_history;
   applyPlanVerdict(*problem_, result);
   result.planning_time_ms = elapsed_ms();
+  planned_ms_ = result.planning_time_ms;
   return result;
 }
 
@@ -270,7 +292,7 @@ std::string KinodynamicPrm::growRoadmap(TerminationCondition& condition, PlanRes
   while (!condition.shouldStop(iterations, best_node_ != kNoParent)) {
     ++iterations;
     if (roadmap_.size() >= options_.max_nodes) {
-      result.statistics.iterations = iterations;
+      result.statistics.iterations += iterations;
       return "the roadmap reached its node cap";
     }
     Eigen::Vector2d milestone;
@@ -288,7 +310,7 @@ std::string KinodynamicPrm::growRoadmap(TerminationCondition& condition, PlanRes
     }
     extendTowards(milestone, milestone_speed, milestone_to_goal, condition, result);
   }
-  result.statistics.iterations = iterations;
+  result.statistics.iterations += iterations;
   std::ostringstream text;
   if (condition.timeUp()) {
     text << "no trajectory reached the goal region within the time limit of "
@@ -349,7 +371,7 @@ void KinodynamicPrm::extendTowards(const Eigen::Vector2d& milestone, double mile
     child.parent = parent;
     child.edge = request;
     const std::int32_t id = addNode(child);
-    const double elapsed_ms = condition.elapsedSeconds() * 1e3;
+    const double elapsed_ms = planned_ms_ + condition.elapsedSeconds() * 1e3;
     if (goal.contains(child.state)) {
       recordSolution(id, nullptr, cost, elapsed_ms, result);
     } else if ((child.state.position - goal.position).norm() <= options_.goal_connection_radius_m) {

@@ -316,12 +316,8 @@ void LatticeGraph::edgePoints(const LatticeState& s, int e,
   for (const SearchSample& sample : t.samples) out.push_back(p0 + sample.offset);
 }
 
-std::optional<LatticeTrajectory> LatticeGraph::trajectory(const std::vector<LatticeStep>& path,
-                                                          std::string* reason) const {
-  const auto fail = [reason](const std::string& why) -> std::optional<LatticeTrajectory> {
-    if (reason != nullptr) *reason = why;
-    return std::nullopt;
-  };
+Expected<LatticeTrajectory> LatticeGraph::trajectory(const std::vector<LatticeStep>& path) const {
+  const auto fail = [](std::string why) { return unexpected(std::move(why)); };
   if (path.empty()) return fail("empty path");
   LatticeTrajectory out;
   models::Trajectory& trajectory = out.trajectory;

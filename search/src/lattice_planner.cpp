@@ -191,8 +191,7 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) {
     ++stats.rounds;
     if (!stopped) stats.final_epsilon = epsilon;
     if (std::optional<std::vector<LatticeStep>> path = search.improvedPath()) {
-      std::string why;
-      std::optional<LatticeTrajectory> trajectory = graph.trajectory(*path, &why);
+      Expected<LatticeTrajectory> trajectory = graph.trajectory(*path);
       if (trajectory && (!best || trajectory->duration < best->duration)) {
         const double now = millisecondsSince(started);
         if (!result.first_solution_ms) {
@@ -200,9 +199,9 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) {
           result.first_solution_cost_s = trajectory->duration;
         }
         result.cost_history.push_back({now, trajectory->duration});
-        best = std::move(trajectory);
+        best = std::move(*trajectory);
       } else if (!trajectory) {
-        last_failure = why;
+        last_failure = trajectory.reason();
       }
     }
     const bool first_only = search.foundGoal() && termination.stopsAtFirstSolution();

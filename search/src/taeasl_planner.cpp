@@ -368,12 +368,11 @@ PlanResult TaeaslPlanner::solve(TerminationCondition termination) {
     // Past the time limit only the best class is still built: the limit holds.
     if (!result.solutions.empty() && termination.timeUp()) break;
     const HomotopyClass& k = search.homotopyClass(c);
-    std::string why;
-    std::optional<LatticeTrajectory> trajectory =
-        graph.trajectory(detail::reconstructPath(search.nodes(), k.best_goal), &why);
+    Expected<LatticeTrajectory> trajectory =
+        graph.trajectory(detail::reconstructPath(search.nodes(), k.best_goal));
     ++built;
     if (!trajectory) {
-      last_failure = k.signature.toString() + ": " + why;
+      last_failure = k.signature.toString() + ": " + trajectory.reason();
       continue;
     }
     PlanSolution solution = detail::latticeSolution(std::move(*trajectory), k.found_ms);

@@ -1,8 +1,9 @@
 #pragma once
-// The problem sets of 004_... (ocp/problem_sets.hpp) under the tests' short name.
+// The problem sets of 004_... (bench/problem_sets.hpp, the benchmark fixtures) under the tests'
+// short name.
 
-#include "terratraj/ocp/problem_sets.hpp"
+#include "terratraj/bench/problem_sets.hpp"
 
 namespace terratraj::ocp {
-namespace fixtures = problem_sets;
+namespace fixtures = bench::problem_sets;
 }  // namespace terratraj::ocp

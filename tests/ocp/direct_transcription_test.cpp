@@ -47,9 +47,9 @@ BoundaryValueProblem restToRest(double x0, double y0, double x1, double y1, doub
 }
 
 TranscriptionGuess straightGuess(const BoundaryValueProblem& problem) {
-  const std::optional<TranscriptionGuess> guess = guessFromPath(
+  const Expected<TranscriptionGuess> guess = guessFromPath(
       {{problem.start.x, problem.start.y}, {problem.goal.x, problem.goal.y}}, problem);
-  EXPECT_TRUE(guess.has_value());
+  EXPECT_TRUE(guess.ok()) << guess.reason();
   return *guess;
 }
 
@@ -394,9 +394,8 @@ TEST(DirectTranscription, NeverWorseThanTheParametricOptimumBeyondDiscretisation
     std::printf("  parametric: cost %.6f, %d iterations\n", parametric.verified.cost,
                 parametric.solver.iterations);
     ASSERT_EQ(parametric.status, SolveStatus::kConverged) << parametric.reason;
-    const std::optional<TranscriptionGuess> guess =
-        guessFromTrajectory(parametric.verified.trajectory);
-    ASSERT_TRUE(guess.has_value());
+    const Expected<TranscriptionGuess> guess = guessFromTrajectory(parametric.verified.trajectory);
+    ASSERT_TRUE(guess.ok()) << guess.reason();
     DirectTranscriptionOptions options;
     options.intervals = 60;
     if (std::getenv("TT_PRINT") != nullptr) options.print_level = 5;
@@ -428,9 +427,8 @@ TEST(DirectTranscription, WarmStartsFromAnXyPathAndRefinesTheMesh) {
     sample.y = p.y();
     path.samples.push_back(sample);
   }
-  std::string why;
-  const std::optional<TranscriptionGuess> guess = guessFromCandidate(path, problem, &why);
-  ASSERT_TRUE(guess.has_value()) << why;
+  const Expected<TranscriptionGuess> guess = guessFromCandidate(path, problem);
+  ASSERT_TRUE(guess.ok()) << guess.reason();
   DirectTranscriptionOptions options;
   options.intervals = 12;
   options.model.control_effort_weight = 1e-3;
@@ -460,9 +458,9 @@ TEST(DirectTranscription, KeepsItsClearanceFromLethalCells) {
   problem.limits.a_max = 0.5;
   problem.limits.kappa_max = 1.0;
   // A candidate passing north of the block.
-  const std::optional<TranscriptionGuess> guess =
+  const Expected<TranscriptionGuess> guess =
       guessFromPath({{3, 10}, {8, 12.5}, {12, 12.5}, {17, 10}}, problem);
-  ASSERT_TRUE(guess.has_value());
+  ASSERT_TRUE(guess.ok()) << guess.reason();
   DirectTranscriptionOptions options;
   options.intervals = 60;
   options.model.control_effort_weight = 1e-3;

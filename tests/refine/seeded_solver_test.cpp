@@ -8,16 +8,16 @@
 
 #include <cmath>
 
+#include "terratraj/bench/robustness_sets.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/ocp/dubins_path.hpp"
-#include "terratraj/ocp/robustness_sets.hpp"
 #include "terratraj/refine/seeded_solver.hpp"
 #include "terratraj/terrain/terrain_surface.hpp"
 
 namespace terratraj::refine {
 namespace {
 
-namespace sets = ocp::problem_sets;
+namespace sets = bench::problem_sets;
 
 // Every row within the limits (1e-3 relative, as the contract's verdict), the last row at the
 // goal within 1e-3 m and the start at the start.

@@ -76,6 +76,7 @@ TEST(KinodynamicPrm, DeterministicForASeed) {
   options.seed = 11;
   KinodynamicPrm planner(world->problem, options);
   const PlanResult a = planner.solve(TerminationCondition::iterationLimit(600));
+  planner.clear();
   const PlanResult b = planner.solve(TerminationCondition::iterationLimit(600));
   ASSERT_EQ(a.status, PlanStatus::kSolved) << a.reason;
   EXPECT_EQ(a.nodes, b.nodes);
@@ -90,6 +91,44 @@ TEST(KinodynamicPrm, DeterministicForASeed) {
   KinodynamicPrm other(world->problem, options);
   const PlanResult c = other.solve(TerminationCondition::iterationLimit(600));
   EXPECT_TRUE(c.nodes != a.nodes || c.best_cost_s != a.best_cost_s);
+}
+
+// solve() called again continues the roadmap (a replanning loop's use): two calls of 300
+// iterations end exactly where one call of 600 does, and a further call never loses the best
+// solution.
+TEST(KinodynamicPrm, ContinuesItsRoadmapWhenCalledAgain) {
+  const std::unique_ptr<TestWorld> world = makeWorld(TerrainKind::kHills, 96, 5);
+  PrmOptions options;
+  options.seed = 11;
+  KinodynamicPrm once(world->problem, options);
+  const PlanResult whole = once.solve(TerminationCondition::iterationLimit(600));
+  ASSERT_EQ(whole.status, PlanStatus::kSolved) << whole.reason;
+
+  KinodynamicPrm twice(world->problem, options);
+  const PlanResult first = twice.solve(TerminationCondition::iterationLimit(300));
+  const PlanResult second = twice.solve(TerminationCondition::iterationLimit(300));
+  ASSERT_EQ(second.status, PlanStatus::kSolved) << second.reason;
+  EXPECT_GE(second.nodes, first.nodes);
+  EXPECT_EQ(second.nodes, whole.nodes);
+  EXPECT_EQ(second.statistics.iterations, whole.statistics.iterations);
+  EXPECT_EQ(second.statistics.attempts, whole.statistics.attempts);
+  EXPECT_EQ(second.best_cost_s, whole.best_cost_s);
+  EXPECT_EQ(second.cost_history.size(), whole.cost_history.size());
+  if (first.status == PlanStatus::kSolved) {
+    EXPECT_LE(second.best_cost_s, first.best_cost_s);
+  }
+
+  const PlanResult third = twice.solve(TerminationCondition::iterationLimit(200));
+  ASSERT_EQ(third.status, PlanStatus::kSolved) << third.reason;
+  EXPECT_LE(third.best_cost_s, second.best_cost_s);
+  EXPECT_GE(third.nodes, second.nodes);
+  EXPECT_EQ(third.statistics.iterations, whole.statistics.iterations + 200);
+
+  // clear() starts over: the same as a new planner.
+  twice.clear();
+  const PlanResult again = twice.solve(TerminationCondition::iterationLimit(600));
+  EXPECT_EQ(again.nodes, whole.nodes);
+  EXPECT_EQ(again.best_cost_s, whole.best_cost_s);
 }
 
 // The time limit holds within 5 % or 10 ms, with and without a reachable goal.

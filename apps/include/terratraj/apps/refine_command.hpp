@@ -27,17 +27,6 @@ struct RefineOptions {
   std::optional<std::filesystem::path> plot;  ///< map PNG (and -profiles, -convergence)
 };
 
-/// The figures of a trajectory as JSON (cost, duration_s, length_m, max_abs_pitch_rad,
-/// max_abs_roll_rad, max_speed, min_clearance_m, check {ok, constraint_violation,
-/// violated_limits}, homotopy).
-nlohmann::json trajectoryFiguresJson(const refine::TrajectoryFigures& figures);
-
-/// The `refined` block of a plan report's solution: status, reason, cost_s (duration), cost
-/// (the problem's cost), file, method, method_rule, iterations, solve_time_ms and the refined
-/// trajectory's figures, homotopy (after), homotopy_kept, cost_ratio.
-nlohmann::json refinedSolutionJson(const refine::RefinementResult& result,
-                                   const std::optional<std::filesystem::path>& file);
-
 /// The `refine` report: the contract's solve/refine keys (from the independent re-simulation)
 /// plus candidate {file, derived_columns, figures}, refined {figures}, homotopy {before, after,
 /// kept}, cost_ratio and the settings in use.

@@ -37,16 +37,6 @@ nlohmann::json transcriptionReportJson(const ocp::TranscriptionSolution& solutio
                                        const ocp::DirectTranscriptionOptions& options,
                                        const std::string& guess_source);
 
-/// The report's `history`: per iteration, iteration, terminal_error, cost,
-/// lagrangian_gradient, step (and heading_error when asked); non-finite values as null.
-nlohmann::json iterationHistoryJson(const std::vector<ocp::IterationRecord>& history,
-                                    bool heading_error);
-
-/// The report's figures that come from an independent re-simulation: final_time_s, cost,
-/// length_m, terminal_error, max_abs_pitch_rad, max_abs_roll_rad, max_speed,
-/// constraint_violation, violated_limit, slope_dwell_rad2_s, verified (null where it failed).
-nlohmann::json verifiedTrajectoryJson(const ocp::VerifiedTrajectory& verified);
-
 /// The contract's solve report for a solution.
 nlohmann::json solveReportJson(const ocp::BoundaryValueSolution& solution,
                                const ocp::BoundaryValueOptions& options);

@@ -6,12 +6,10 @@
 // cells, pitch, roll, speed caps and tables). OMPL is a benchmark peer only.
 
 #include <cstdint>
-#include <optional>
+#include <memory>
 #include <string>
-#include <utility>
-#include <vector>
 
-#include "terratraj/models/trajectory.hpp"
+#include "terratraj/search/planner.hpp"
 #include "terratraj/search/planning_problem.hpp"
 
 namespace terratraj::bench {
@@ -22,28 +20,38 @@ inline const char* omplPlannerName(OmplPlanner planner) {
   return planner == OmplPlanner::kRrt ? "ompl_rrt" : "ompl_sst";
 }
 
-/// Whether this build has the peers (false with -DTERRATRAJ_WITH_OMPL=OFF: runOmplPeer() then
-/// returns an unsolved run whose status says so).
+/// Whether this build has the peers (false with -DTERRATRAJ_WITH_OMPL=OFF: an
+/// OmplPeerPlanner then plans nothing and says so).
 bool omplPeersAvailable();
 
-/// One OMPL run.
-struct OmplRun {
-  bool solved = false;             ///< an exact solution (the goal region reached)
-  std::string status;              ///< OMPL's PlannerStatus as text
-  std::optional<double> first_ms;  ///< time to the first exact solution [ms]
-  std::vector<std::pair<double, double>> cost_history;  ///< (ms, duration [s]) per improvement
-  double planning_ms = 0.0;                             ///< the whole solve() [ms]
-  /// The best solution re-integrated with the extension integrator (every column filled);
-  /// its duration is the cost reported.
-  models::Trajectory trajectory;
-  double cost_s = 0.0;
-};
+/// An OMPL peer behind the planners' interface (search::Planner): solve() returns the same
+/// PlanResult as terratraj's planners, its one solution (OMPL's exact solution, re-integrated
+/// with the extension integrator, every column filled; its duration is the cost) judged by the
+/// same verdict (search::applyPlanVerdict). The termination condition's time limit, stop flag
+/// and stop-at-first-solution apply; its iteration budget does not (OMPL counts none). RRT
+/// returns at its first solution. solve() again continues OMPL's tree (clear() starts over);
+/// times count planning time summed over the calls [ms]. Not thread-safe.
+class OmplPeerPlanner final : public search::Planner {
+ public:
+  /// `problem` must outlive the planner. OMPL's random seed is process-wide: it is set from
+  /// `seed` by the first peer built in the process only (later peers continue its sequence).
+  OmplPeerPlanner(const search::PlanningProblem& problem, OmplPlanner planner, std::uint64_t seed);
+  ~OmplPeerPlanner() override;
+  OmplPeerPlanner(const OmplPeerPlanner&) = delete;
+  OmplPeerPlanner& operator=(const OmplPeerPlanner&) = delete;
 
-/// Runs `planner` on `problem` for at most `budget_s` seconds (RRT stops at its first
-/// solution). OMPL's random seed is process-wide: it is set from `seed` on the first call
-/// only (later calls in the same process continue its sequence). Never throws for a failed
-/// plan (solved false, status says why).
-OmplRun runOmplPeer(const search::PlanningProblem& problem, OmplPlanner planner, double budget_s,
-                    std::uint64_t seed);
+  /// "ompl_rrt" or "ompl_sst".
+  const char* name() const override;
+  /// Plans; kNoSolution's reason names OMPL's status ("unavailable: ..." without OMPL).
+  search::PlanResult solve(search::TerminationCondition termination) override;
+  /// A new tree and no solution.
+  void clear() override;
+  /// OMPL's PlannerStatus of the last solve() as text ("not run" before it).
+  const std::string& omplStatus() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace terratraj::bench

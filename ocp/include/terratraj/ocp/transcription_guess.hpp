@@ -12,6 +12,7 @@
 #include "terratraj/models/trajectory.hpp"
 #include "terratraj/ocp/boundary_value_problem.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
+#include "terratraj/terrain/expected.hpp"
 
 namespace terratraj::ocp {
 
@@ -28,23 +29,21 @@ struct TranscriptionGuess {
 
 /// A guess from a time-sampled trajectory with t, x, y, heading and v (omega from the
 /// curvature or the heading's rate when absent; v' and omega' from differences). Samples must
-/// have increasing t; std::nullopt (and `why`) otherwise.
-std::optional<TranscriptionGuess> guessFromTrajectory(const models::Trajectory& trajectory,
-                                                      std::string* why = nullptr);
+/// have increasing t; a failure with the reason otherwise.
+Expected<TranscriptionGuess> guessFromTrajectory(const models::Trajectory& trajectory);
 
 /// A guess from a geometric path (x, y points, at least 2 distinct): resampled every `spacing`
 /// m of arc length, heading from the tangent (start and goal headings at the ends), speeds
 /// from a forward-backward pass under v_max, a_max and omega_max / |curvature|, starting and
-/// ending at the problem's speeds; times from the speeds. std::nullopt (and `why`) for a path
+/// ending at the problem's speeds; times from the speeds. A failure with the reason for a path
 /// with fewer than two distinct points or non-finite values.
-std::optional<TranscriptionGuess> guessFromPath(const std::vector<Eigen::Vector2d>& path,
-                                                const BoundaryValueProblem& problem,
-                                                double spacing = 0.25, std::string* why = nullptr);
+Expected<TranscriptionGuess> guessFromPath(const std::vector<Eigen::Vector2d>& path,
+                                           const BoundaryValueProblem& problem,
+                                           double spacing = 0.25);
 
 /// The guess for a user's or a planner's trajectory: from its timing when it has t and v,
 /// else from its x, y alone (guessFromPath).
-std::optional<TranscriptionGuess> guessFromCandidate(const models::Trajectory& candidate,
-                                                     const BoundaryValueProblem& problem,
-                                                     std::string* why = nullptr);
+Expected<TranscriptionGuess> guessFromCandidate(const models::Trajectory& candidate,
+                                                const BoundaryValueProblem& problem);
 
 }  // namespace terratraj::ocp

@@ -51,16 +51,25 @@ struct PrmOptions {
   std::size_t max_nodes = 2000000;              ///< stop growing (no_solution reason) beyond this
 };
 
-/// The planner. Holds the roadmap of the last solve() for inspection.
+/// The planner. Keeps its roadmap between solve() calls (a replanning loop continues it);
+/// clear() starts over.
 class KinodynamicPrm final : public Planner {
  public:
   /// `problem` must outlive the planner; it is not validated here (PlanningProblem::validate).
   KinodynamicPrm(const PlanningProblem& problem, const PrmOptions& options = {});
 
-  /// Plans from scratch (a new roadmap, the generator re-seeded) until `condition` stops it.
-  /// Never throws for planning failures: they are a kNoSolution status with a reason (a time
-  /// limit of 0, no solution in time, the node cap). std::bad_alloc may escape.
+  /// Grows the roadmap until `condition` stops it: the first call (or the first after clear())
+  /// starts it from the start state with the generator seeded; later calls continue it (its
+  /// nodes, best solution and generator), so two calls of 300 iterations end where one of 600
+  /// does. The result's counters, cost history and times count from that first call, times in
+  /// planning time summed over the calls [ms]. Never throws for planning failures: they are a
+  /// kNoSolution status with a reason (a time limit of 0, no solution in time, the node cap).
+  /// std::bad_alloc may escape.
   PlanResult solve(TerminationCondition condition) override;
+
+  /// Forgets the roadmap, the best solution and the counters; re-seeds the generator. The next
+  /// solve() plans from scratch, exactly as the first after construction did.
+  void clear() override;
 
   /// "prm".
   const char* name() const override { return "prm"; }
@@ -113,6 +122,11 @@ class KinodynamicPrm final : public Planner {
   std::int32_t best_node_ = kNoParent;
   ExtensionRequest best_edge_;
   bool has_best_edge_ = false;
+  // Continuation across solve() calls: whether the roadmap holds its root, the planning time
+  // of the calls so far [ms], and their counters, first solution and cost history.
+  bool started_ = false;
+  double planned_ms_ = 0.0;
+  PlanResult progress_;
 };
 
 }  // namespace terratraj::search

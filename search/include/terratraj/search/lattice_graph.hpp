@@ -31,6 +31,7 @@
 #include "terratraj/search/motion_primitive.hpp"
 #include "terratraj/search/planning_problem.hpp"
 #include "terratraj/search/speed_profile.hpp"
+#include "terratraj/terrain/expected.hpp"
 
 namespace terratraj::search {
 
@@ -135,10 +136,9 @@ class LatticeGraph {
 
   /// The trajectory of a path from the start: samples every sample_spacing, attitude from the
   /// vehicle model, the bang-bang speed profile (001_... IV.C) from the start's speed to the
-  /// goal's under the caps. std::nullopt (with `reason`) when a step is invalid or no profile
+  /// goal's under the caps. A failure with the reason when a step is invalid or no profile
   /// exists (the start too fast for the first caps, too short to brake).
-  std::optional<LatticeTrajectory> trajectory(const std::vector<LatticeStep>& path,
-                                              std::string* reason = nullptr) const;
+  Expected<LatticeTrajectory> trajectory(const std::vector<LatticeStep>& path) const;
 
   /// Number of start connectors (0 when the start heading is a lattice heading).
   std::size_t connectorCount() const { return connectors_.size(); }

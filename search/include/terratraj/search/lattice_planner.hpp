@@ -47,6 +47,8 @@ class LatticePlanner final : public Planner {
 
   /// "lattice".
   const char* name() const override { return "lattice"; }
+  /// Nothing to forget: every solve() searches afresh.
+  void clear() override {}
 
   const LatticePlannerOptions& options() const { return options_; }
 

@@ -78,6 +78,8 @@ class TaeaslPlanner final : public Planner {
 
   /// "taeasl".
   const char* name() const override { return "taeasl"; }
+  /// Nothing to forget: every solve() searches afresh (the frames stay: they are the problem's).
+  void clear() override {}
 
   /// The frames in use (their indices name the signatures' letters).
   const ReferenceFrames& frames() const { return frames_; }

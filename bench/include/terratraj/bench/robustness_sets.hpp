@@ -11,7 +11,9 @@
 #include "terratraj/ocp/boundary_value_problem.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
 
-namespace terratraj::ocp::problem_sets {
+namespace terratraj::bench::problem_sets {
+
+using ocp::BoundaryValueProblem;
 
 /// A rover's limits: v_max 1 m/s, a_max 0.5 m/s^2, omega_max 1 rad/s, kappa_max 1 1/m,
 /// sigma_max 20 1/(m s) (a curvature change takes 5 cm at 1 m/s: the turns are nearly Dubins'),
@@ -39,4 +41,4 @@ std::vector<BoundaryValueProblem> terrainProblems(const terrain::ElevationMap& m
                                                   const models::VehicleLimits& limits, int count,
                                                   std::uint64_t seed);
 
-}  // namespace terratraj::ocp::problem_sets
+}  // namespace terratraj::bench::problem_sets

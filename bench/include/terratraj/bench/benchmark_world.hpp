@@ -14,7 +14,7 @@
 #include "terratraj/terrain/terrain_generator.hpp"
 #include "terratraj/terrain/terrain_surface.hpp"
 
-namespace terratraj::search {
+namespace terratraj::bench {
 
 inline constexpr double kBenchmarkCell = 0.25;  ///< [m]
 
@@ -56,8 +56,8 @@ struct BenchmarkWorld {
   terrain::ElevationMap map;
   terrain::TerrainSurface surface;
   std::unique_ptr<models::TerrainFollowingModel> vehicle;
-  PlanningProblem problem;
+  search::PlanningProblem problem;
   bool placed = false;
 };
 
-}  // namespace terratraj::search
+}  // namespace terratraj::bench

@@ -13,7 +13,9 @@
 #include "terratraj/terrain/elevation_map.hpp"
 #include "terratraj/terrain/raster_io.hpp"
 
-namespace terratraj::ocp::problem_sets {
+namespace terratraj::bench::problem_sets {
+
+using ocp::BoundaryValueProblem;
 
 /// Whether every cell within `margin` [m] of (x, y) [m, local frame] is on the map, holds data
 /// and is not lethal (problem ends a vehicle can stand on, away from the edges).
@@ -61,4 +63,4 @@ struct RandomProblemOptions {
 std::vector<BoundaryValueProblem> randomProblems(const terrain::ElevationMap& map,
                                                  const RandomProblemOptions& options);
 
-}  // namespace terratraj::ocp::problem_sets
+}  // namespace terratraj::bench::problem_sets
