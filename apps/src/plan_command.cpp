@@ -127,15 +127,21 @@ PlannerSetup setUpLatticePlanner(const ProblemSpec& problem, const search::Plann
   generation.progress = primitiveProgress(context);
   generation.stop = context.stop;
   const auto load_started = std::chrono::steady_clock::now();
+  const std::filesystem::path cache_dir = primitiveCacheDirectory();
   setup.primitives = std::make_unique<search::LoadedPrimitives>(search::loadOrGeneratePrimitives(
       lattice, query.limits, generation,
       problem.planner.primitives ? *problem.planner.primitives : std::filesystem::path(),
-      primitiveCacheDirectory()));
+      cache_dir));
   const search::LoadedPrimitives& primitives = *setup.primitives;
   const double load_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_started)
           .count();
-  if (!primitives.cache_note.empty()) context.log->info("primitives: {}", primitives.cache_note);
+  if (!primitives.cache_note.empty()) {
+    context.log->info("primitives: {}{}", primitives.cache_note,
+                      cache_dir.empty() && !problem.planner.primitives
+                          ? " (set TERRATRAJ_CACHE_DIR, XDG_CACHE_HOME or HOME to keep them)"
+                          : "");
+  }
   context.log->info("{} motion primitives ({}{}{}), {} ms", primitives.set.size(),
                     search::primitiveSourceName(primitives.source),
                     primitives.path.empty() ? "" : " ", primitives.path.string(), load_ms);

@@ -260,17 +260,9 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
     }
     if (solve.transcription.intervals <= 0) solve.transcription.intervals = 40;
     solve.max_intervals = std::max(solve.max_intervals, solve.transcription.intervals);
-    ocp::VerifiedTranscription result = ocp::solveTranscription(vehicle, bvp, *guess, solve);
-    solution.status = result.status;
-    solution.reason = result.reason;
-    solution.method = solverMethodName(problem.solver.method);
-    solution.initial_guess = options.guess->string();
-    solution.verified = result.verified;
-    solution.verdict = result.verdict;
-    solution.history = result.history;
-    solution.iterations = result.iterations;
-    solution.total_time_ms = result.solve_time_ms;
-    solution.transcription = std::move(result);
+    solution =
+        refine::seededSolutionOf(ocp::solveTranscription(vehicle, bvp, *guess, solve),
+                                 solverMethodName(problem.solver.method), options.guess->string());
   } else {
     context.log->info(
         "solving with {} ({} seeds) on the {} model", solverMethodName(problem.solver.method),

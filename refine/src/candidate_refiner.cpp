@@ -5,8 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
+#include "format_number.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
 #include "terratraj/ocp/start_at_goal.hpp"
 #include "terratraj/ocp/transcription_guess.hpp"
@@ -21,11 +21,7 @@ namespace {
 
 using models::TrajectoryColumn;
 
-std::string formatNumber(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
+using detail::formatNumber;
 
 std::string formatPoint(double x, double y) {
   return "(" + formatNumber(x) + ", " + formatNumber(y) + ")";

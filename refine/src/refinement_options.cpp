@@ -2,8 +2,9 @@
 
 #include <array>
 #include <cmath>
-#include <sstream>
 #include <utility>
+
+#include "format_number.hpp"
 
 namespace terratraj::refine {
 namespace {
@@ -16,11 +17,7 @@ constexpr std::array<std::pair<RefineMethod, const char*>, 5> kMethodNames{{
     {RefineMethod::kIpopt, "ipopt"},
 }};
 
-std::string formatNumber(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
+using detail::formatNumber;
 
 }  // namespace
 

@@ -189,17 +189,9 @@ SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
           wanted, options.min_intervals, std::max(options.min_intervals, solve.max_intervals / 2));
     }
     solve.max_intervals = std::max(solve.max_intervals, solve.transcription.intervals);
-    out.method = options.method == CoreMethod::kShooting ? "shooting" : "collocation";
-    ocp::VerifiedTranscription result =
-        ocp::solveTranscription(vehicle, problem, seed->guess, solve);
-    out.status = result.status;
-    out.reason = result.reason;
-    out.verified = result.verified;
-    out.verdict = result.verdict;
-    out.history = result.history;
-    out.iterations = result.iterations;
-    out.transcription = std::move(result);
-    return out;
+    return seededSolutionOf(ocp::solveTranscription(vehicle, problem, seed->guess, solve),
+                            options.method == CoreMethod::kShooting ? "shooting" : "collocation",
+                            std::move(out.initial_guess));
   }
   ocp::BoundaryValueProblem posed = problem;
   if (options.method == CoreMethod::kIpopt) {
@@ -231,6 +223,22 @@ SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
 }
 
 }  // namespace
+
+SeededSolution seededSolutionOf(ocp::VerifiedTranscription result, std::string method,
+                                std::string initial_guess) {
+  SeededSolution out;
+  out.status = result.status;
+  out.reason = result.reason;
+  out.method = std::move(method);
+  out.initial_guess = std::move(initial_guess);
+  out.verified = result.verified;
+  out.verdict = result.verdict;
+  out.history = result.history;
+  out.iterations = result.iterations;
+  out.total_time_ms = result.solve_time_ms;
+  out.transcription = std::move(result);
+  return out;
+}
 
 SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
                            const ocp::BoundaryValueProblem& problem,

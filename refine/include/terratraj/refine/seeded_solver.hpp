@@ -111,6 +111,12 @@ struct SeededSolution {
   double total_time_ms = 0.0;
 };
 
+/// The solution of one verified transcription (its status, reason, re-simulation, verdict,
+/// history and iterations; the transcription kept), produced by `method` from `initial_guess`
+/// (names as the report prints them).
+SeededSolution seededSolutionOf(ocp::VerifiedTranscription result, std::string method,
+                                std::string initial_guess);
+
 /// Solves `problem` on `vehicle` (map: the verdict's map rules and the obstacles of the seeds;
 /// may be null). Never throws (except std::bad_alloc). Ipopt 3.11 is not thread-safe: one solve
 /// at a time per process.
