@@ -122,6 +122,53 @@ BENCHMARK(BM_CollocationRough)
     ->Iterations(3)
     ->Unit(benchmark::kMillisecond);
 
+// Issue 17's speed target on one set: direct transcription with 100 intervals against newton
+// on the same problems, the rough lattice's 94 edges with the rocker-bogie (the problems of
+// BM_RoughLattice94). Each edge is solved by newton (flat guess + solver) and by collocation
+// from a straight-line guess (the same information), Ipopt with the exact Hessian. Counters:
+// per-problem median and p90 times of both, their ratio, collocation's success rate and
+// iterations. Argument: scheme 0 Hermite-Simpson, 1 trapezoidal.
+void BM_CollocationVsNewtonRoughLattice(benchmark::State& state) {
+  static const Rough rough;
+  ocp::BoundaryValueOptions newton;
+  newton.method = ocp::BoundaryValueMethod::kNewton;
+  ocp::DirectTranscriptionOptions options;
+  options.intervals = 100;
+  options.scheme = state.range(0) == 0 ? ocp::TranscriptionScheme::kHermiteSimpson
+                                       : ocp::TranscriptionScheme::kTrapezoidal;
+  options.model.control_effort_weight = 1e-3;
+  std::vector<double> newton_ms, collocation_ms, ratios, iterations;
+  int converged = 0, solves = 0;
+  for (auto _ : state) {
+    for (const ocp::BoundaryValueProblem& problem : rough.set) {
+      const ocp::BoundaryValueSolution n =
+          ocp::solveBoundaryValue(rough.vehicle, problem, newton, &rough.map);
+      const ocp::TranscriptionGuess guess = *ocp::guessFromPath(
+          {{problem.start.x, problem.start.y}, {problem.goal.x, problem.goal.y}}, problem);
+      const ocp::TranscriptionSolution c =
+          ocp::solveDirectTranscription(rough.vehicle, problem, guess, options);
+      newton_ms.push_back(n.total_time_ms);
+      collocation_ms.push_back(c.result.solve_time_ms);
+      ratios.push_back(c.result.solve_time_ms / std::max(n.total_time_ms, 1e-6));
+      iterations.push_back(c.result.iterations);
+      converged += c.result.status == ocp::SolveStatus::kConverged ? 1 : 0;
+      ++solves;
+    }
+  }
+  state.counters["collocation_success"] = static_cast<double>(converged) / std::max(1, solves);
+  state.counters["collocation_iterations_median"] = percentile(iterations, 0.5);
+  state.counters["newton_ms_median"] = percentile(newton_ms, 0.5);
+  state.counters["collocation_ms_median"] = percentile(collocation_ms, 0.5);
+  state.counters["collocation_ms_p90"] = percentile(collocation_ms, 0.9);
+  state.counters["ratio_of_medians"] =
+      percentile(collocation_ms, 0.5) / std::max(percentile(newton_ms, 0.5), 1e-6);
+  state.counters["ratio_median"] = percentile(ratios, 0.5);
+}
+BENCHMARK(BM_CollocationVsNewtonRoughLattice)
+    ->DenseRange(0, 1)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();
