@@ -38,7 +38,10 @@ class AraStarSearch {
   // termination condition stopped it.
   bool improvePath(TerminationCondition& termination) {
     while (!open_.empty()) {
-      if ((expansions_ & 15u) == 0 && termination.shouldStop(expansions_, false)) return false;
+      if ((expansions_ & 15u) == 0 &&
+          termination.shouldStop(expansions_ - call_expansions_, false)) {
+        return false;
+      }
       const QueueEntry top = open_.top();
       if (top.g != nodes_[top.node].g || nodes_[top.node].closed_round == round_) {
         open_.pop();
@@ -87,6 +90,9 @@ class AraStarSearch {
     }
     open_ = detail::OpenList(detail::QueueOrder(), std::move(entries));
   }
+
+  // A new solve() call: its iteration budget counts expansions from here.
+  void beginCall() { call_expansions_ = expansions_; }
 
   bool foundGoal() const { return best_goal_ >= 0; }
   // Nothing left to search: OPEN and INCONS empty and no goal reached.
@@ -148,9 +154,40 @@ class AraStarSearch {
   double published_g_ = std::numeric_limits<double>::infinity();
   std::uint32_t round_ = 1;
   std::size_t expansions_ = 0;
+  std::size_t call_expansions_ = 0;  // expansions_ when the current solve() began
 };
 
 }  // namespace
+
+// What solve() calls carry over (clear() drops it): the search with its node table, OPEN and
+// INCONS, the round's epsilon, the best trajectory and the counts.
+struct LatticePlanner::Progress {
+  Progress(const LatticeGraph& graph, double epsilon_in)
+      : search(graph, epsilon_in, stats), epsilon(epsilon_in) {
+    stats.rounds = 1;
+  }
+  // The next round at the next epsilon (OPEN u INCONS re-keyed).
+  void nextRound(double step) {
+    epsilon = std::max(1.0, epsilon - step);
+    search.startRound(epsilon);
+    round_done = false;
+    ++stats.rounds;
+  }
+
+  SearchStatistics stats;  // before `search`, which counts into it; rounds = rounds begun
+  AraStarSearch search;
+  double epsilon;
+  bool round_done = false;  // the round at `epsilon` finished (the next call starts the next)
+  bool finished = false;    // the search ended (optimal round done, or nothing left)
+  bool proven = false;
+  std::optional<LatticeTrajectory> best;
+  std::string last_failure;
+  std::vector<CostSample> cost_history;
+  std::optional<double> first_solution_ms;
+  double first_solution_cost_s = std::numeric_limits<double>::infinity();
+  double planned_ms = 0.0;  // planning time of the earlier calls [ms]
+  bool exhausted = false;   // OPEN emptied without a goal
+};
 
 const char* latticeAlgorithmName(LatticeAlgorithm algorithm) {
   return algorithm == LatticeAlgorithm::kAStar ? "astar" : "arastar";
@@ -158,6 +195,10 @@ const char* latticeAlgorithmName(LatticeAlgorithm algorithm) {
 
 LatticePlanner::LatticePlanner(const LatticeGraph& graph, const LatticePlannerOptions& options)
     : graph_(&graph), options_(options) {}
+
+LatticePlanner::~LatticePlanner() = default;
+
+void LatticePlanner::clear() { progress_.reset(); }
 
 PlanResult LatticePlanner::solve(TerminationCondition termination) {
   const auto started = std::chrono::steady_clock::now();
@@ -178,56 +219,68 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) {
     return finish(result);
   }
   const bool anytime = options_.algorithm == LatticeAlgorithm::kAraStar;
-  double epsilon = anytime ? std::max(1.0, options_.initial_epsilon) : 1.0;
   const double step = options_.epsilon_step > 0.0 ? options_.epsilon_step : 0.5;
-  SearchStatistics& stats = result.search;
-  AraStarSearch search(graph, epsilon, stats);
+  if (!progress_) {
+    progress_ =
+        std::make_unique<Progress>(graph, anytime ? std::max(1.0, options_.initial_epsilon) : 1.0);
+  }
+  Progress& p = *progress_;
+  const double planned_before_ms = p.planned_ms;
+  const auto now_ms = [&] { return planned_before_ms + millisecondsSince(started); };
   bool stopped = false;
-  bool proven = false;
-  std::optional<LatticeTrajectory> best;
-  std::string last_failure;
-  while (true) {
-    stopped = !search.improvePath(termination);
-    ++stats.rounds;
-    if (!stopped) stats.final_epsilon = epsilon;
-    if (std::optional<std::vector<LatticeStep>> path = search.improvedPath()) {
-      Expected<LatticeTrajectory> trajectory = graph.trajectory(*path);
-      if (trajectory && (!best || trajectory->duration < best->duration)) {
-        const double now = millisecondsSince(started);
-        if (!result.first_solution_ms) {
-          result.first_solution_ms = now;
-          result.first_solution_cost_s = trajectory->duration;
+  if (!p.finished) {
+    p.search.beginCall();
+    if (p.round_done) p.nextRound(step);  // the previous call finished a round
+    while (true) {
+      stopped = !p.search.improvePath(termination);
+      // A round stopped at its first goal (stopsAtFirstSolution) is resumed, not finished.
+      p.round_done = !stopped && !termination.stopsAtFirstSolution();
+      if (!stopped) p.stats.final_epsilon = p.epsilon;
+      if (std::optional<std::vector<LatticeStep>> path = p.search.improvedPath()) {
+        Expected<LatticeTrajectory> trajectory = graph.trajectory(*path);
+        if (trajectory && (!p.best || trajectory->duration < p.best->duration)) {
+          const double now = now_ms();
+          if (!p.first_solution_ms) {
+            p.first_solution_ms = now;
+            p.first_solution_cost_s = trajectory->duration;
+          }
+          p.cost_history.push_back({now, trajectory->duration});
+          p.best = std::move(*trajectory);
+        } else if (!trajectory) {
+          p.last_failure = trajectory.reason();
         }
-        result.cost_history.push_back({now, trajectory->duration});
-        best = std::move(*trajectory);
-      } else if (!trajectory) {
-        last_failure = trajectory.reason();
       }
+      if (p.round_done && p.epsilon <= 1.0) p.proven = true;
+      if (p.search.idle()) p.exhausted = true;
+      p.finished = p.exhausted || (p.round_done && (!anytime || p.epsilon <= 1.0));
+      if (p.finished || stopped || termination.timeUp() ||
+          (p.best && termination.stopsAtFirstSolution())) {
+        break;
+      }
+      p.nextRound(step);
     }
-    const bool first_only = search.foundGoal() && termination.stopsAtFirstSolution();
-    if (!stopped && epsilon <= 1.0 && !first_only) proven = true;
-    if (stopped || !anytime || epsilon <= 1.0 || termination.timeUp() ||
-        (best && termination.stopsAtFirstSolution())) {
-      break;
-    }
-    if (search.idle()) break;
-    epsilon = std::max(1.0, epsilon - step);
-    search.startRound(epsilon);
   }
 
-  detail::recordSearchCounts(search.expansions(), search.nodeCount(), result);
+  result.search = p.stats;
+  result.first_solution_ms = p.first_solution_ms;
+  result.first_solution_cost_s = p.first_solution_cost_s;
+  result.cost_history = p.cost_history;
+  detail::recordSearchCounts(p.search.expansions(), p.search.nodeCount(), result);
   result.statistics.improvements = result.cost_history.size();
-  if (best) {
+  if (p.best) {
     result.status = PlanStatus::kSolved;  // applyPlanVerdict() fills the summary
     PlanSolution solution =
-        detail::latticeSolution(std::move(*best), result.cost_history.back().time_ms);
-    solution.proven_optimal = proven;
+        detail::latticeSolution(LatticeTrajectory(*p.best), result.cost_history.back().time_ms);
+    solution.proven_optimal = p.proven;
     result.solutions.push_back(std::move(solution));
   } else {
-    result.reason = detail::noPathReason(graph, last_failure, !(stopped || termination.timeUp()),
-                                         search.expansions(), search.nodeCount());
+    result.reason = detail::noPathReason(graph, p.last_failure, p.exhausted, p.search.expansions(),
+                                         p.search.nodeCount());
   }
-  return finish(result);
+  applyPlanVerdict(graph.problem(), result);
+  result.planning_time_ms = now_ms();
+  p.planned_ms = result.planning_time_ms;
+  return result;
 }
 
 }  // namespace terratraj::search

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "lattice_fixtures.hpp"
@@ -87,6 +88,52 @@ TEST(LatticePlanner, AraStarImprovesMonotonicallyToTheAStarCost) {
     EXPECT_GE(anytime.cost_history[k].time_ms, anytime.cost_history[k - 1].time_ms);
   }
   EXPECT_TRUE(TrajectoryChecker(world->problem).check(anytime.trajectory).ok());
+}
+
+// solve() called again continues the search (a replanning loop's use): an ARA* stopped by its
+// iteration budget goes on where it stopped and ends with the cost, the expansions, the rounds
+// and the proof of one uninterrupted search; a finished search answers at once; clear() starts
+// over.
+TEST(LatticePlanner, AraStarContinuesWhenCalledAgain) {
+  auto world = blockedWorld();
+  const LatticeGraph graph(world->problem, defaultPrimitives());
+  LatticePlannerOptions ara;
+  ara.initial_epsilon = 5.0;
+  ara.epsilon_step = 1.0;
+  LatticePlanner uninterrupted(graph, ara);
+  const PlanResult whole = uninterrupted.solve(TerminationCondition::timeLimit(30));
+  ASSERT_EQ(whole.status, PlanStatus::kSolved) << whole.reason;
+  ASSERT_TRUE(whole.solutions[0].proven_optimal);
+
+  LatticePlanner planner(graph, ara);
+  const std::size_t budget = std::max<std::size_t>(16, whole.search.expansions / 7);
+  PlanResult last;
+  int calls = 0;
+  do {
+    last = planner.solve(TerminationCondition::timeLimit(30).maxIterations(budget));
+    ++calls;
+  } while (!(last.status == PlanStatus::kSolved && last.solutions[0].proven_optimal) &&
+           calls < 100);
+  EXPECT_GT(calls, 2);
+  ASSERT_EQ(last.status, PlanStatus::kSolved) << last.reason;
+  EXPECT_TRUE(last.solutions[0].proven_optimal);
+  EXPECT_EQ(last.search.expansions, whole.search.expansions);
+  EXPECT_EQ(last.search.rounds, whole.search.rounds);
+  EXPECT_EQ(last.search.final_epsilon, 1.0);
+  EXPECT_NEAR(last.solutions[0].search_cost_s, whole.solutions[0].search_cost_s, 1e-9);
+  for (std::size_t k = 1; k < last.cost_history.size(); ++k) {
+    EXPECT_LT(last.cost_history[k].cost_s, last.cost_history[k - 1].cost_s);
+  }
+  EXPECT_TRUE(TrajectoryChecker(world->problem).check(last.trajectory).ok());
+
+  const PlanResult again = planner.solve(TerminationCondition::timeLimit(30));
+  EXPECT_EQ(again.search.expansions, last.search.expansions);  // finished: nothing searched
+  EXPECT_EQ(again.solutions[0].search_cost_s, last.solutions[0].search_cost_s);
+
+  planner.clear();
+  const PlanResult fresh = planner.solve(TerminationCondition::timeLimit(30));
+  EXPECT_EQ(fresh.search.expansions, whole.search.expansions);
+  EXPECT_EQ(fresh.search.rounds, whole.search.rounds);
 }
 
 TEST(LatticePlanner, StartHeadingOffTheLatticeUsesConnectors) {

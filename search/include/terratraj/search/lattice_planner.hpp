@@ -10,6 +10,7 @@
 // the path; PlanResult::cost_history records each new best trajectory duration.
 
 #include <cstddef>
+#include <memory>
 
 #include "terratraj/search/lattice_graph.hpp"
 #include "terratraj/search/plan_result.hpp"
@@ -38,23 +39,32 @@ struct LatticePlannerOptions {
 class LatticePlanner final : public Planner {
  public:
   explicit LatticePlanner(const LatticeGraph& graph, const LatticePlannerOptions& options = {});
+  ~LatticePlanner() override;
+  LatticePlanner(const LatticePlanner&) = delete;
+  LatticePlanner& operator=(const LatticePlanner&) = delete;
 
-  /// Searches until the termination condition (its iteration budget counts expansions), the
-  /// optimal round finishes, or the open list empties (no path: kNoSolution with a reason). A
-  /// graph with error() set gives kNoSolution with that error as the reason. Never throws
+  /// Searches until the termination condition (its iteration budget counts this call's
+  /// expansions), the optimal round finishes, or the open list empties (no path: kNoSolution
+  /// with a reason). Called again, it continues where the last call stopped (the same round,
+  /// or the next epsilon; an ARA* stopped by a time limit goes on improving), and a finished
+  /// search answers at once with its result: a replanning loop's use. Counts, cost history
+  /// and times run from the first call (times in planning time summed over the calls [ms]).
+  /// A graph with error() set gives kNoSolution with that error as the reason. Never throws
   /// (except std::bad_alloc).
   PlanResult solve(TerminationCondition termination) override;
 
   /// "lattice".
   const char* name() const override { return "lattice"; }
-  /// Nothing to forget: every solve() searches afresh.
-  void clear() override {}
+  /// Drops the search: the next solve() starts from the start state at initial_epsilon.
+  void clear() override;
 
   const LatticePlannerOptions& options() const { return options_; }
 
  private:
+  struct Progress;
   const LatticeGraph* graph_;
   LatticePlannerOptions options_;
+  std::unique_ptr<Progress> progress_;
 };
 
 }  // namespace terratraj::search

@@ -23,10 +23,10 @@ class Planner {
   /// Plans until `termination` stops it (its iteration budget counts the planner's own
   /// iterations: PRM samples, lattice expansions). kSolved with at least one solution that
   /// passes the verdict, else kNoSolution with a reason. May be called again without clearing
-  /// (OMPL's semantics): a planner that builds a structure over its calls (the PRM's roadmap,
-  /// the OMPL peers' trees) continues it and never loses its best solution; the lattice
-  /// searches (A* / ARA*, TAEASL) keep nothing between calls and search again (the same answer
-  /// for the same condition). Never throws for planning failures (std::bad_alloc may escape).
+  /// (OMPL's semantics): a planner continues what it built (the PRM's roadmap, A* / ARA*'s
+  /// search and epsilon, the OMPL peers' trees) and never loses its best solution; TAEASL keeps
+  /// nothing between calls and searches again (the same answer for the same condition). Never
+  /// throws for planning failures (std::bad_alloc may escape).
   virtual PlanResult solve(TerminationCondition termination) = 0;
 
   /// Forgets what earlier solve() calls built: the next call plans as the first after
