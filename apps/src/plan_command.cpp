@@ -33,7 +33,6 @@
 namespace terratraj::apps {
 
 using bench::jsonNumber;
-namespace {}  // namespace
 
 namespace {
 

@@ -64,6 +64,10 @@ void KinodynamicPrm::clear() {
   progress_ = PlanResult{};
 }
 
+double KinodynamicPrm::plannedMs(const TerminationCondition& condition) const {
+  return planned_ms_ + condition.elapsedSeconds() * 1e3;
+}
+
 double KinodynamicPrm::uniform() {
   // 53 random bits -> [0, 1): the same numbers on every platform (std:: distributions are
   // implementation-defined).
@@ -229,8 +233,7 @@ PlanResult KinodynamicPrm::solve(TerminationCondition condition) {
   result.first_solution_cost_s = progress_.first_solution_cost_s;
   result.statistics = progress_.statistics;
   result.cost_history = progress_.cost_history;
-  const double planned_before_ms = planned_ms_;
-  const auto elapsed_ms = [&] { return planned_before_ms + condition.elapsedSeconds() * 1e3; };
+  const auto elapsed_ms = [&] { return plannedMs(condition); };
 
   std::string stop_reason;
   if (condition.timeLimitSeconds() <= 0.0) {
@@ -371,7 +374,7 @@ void KinodynamicPrm::extendTowards(const Eigen::Vector2d& milestone, double mile
     child.parent = parent;
     child.edge = request;
     const std::int32_t id = addNode(child);
-    const double elapsed_ms = planned_ms_ + condition.elapsedSeconds() * 1e3;
+    const double elapsed_ms = plannedMs(condition);
     if (goal.contains(child.state)) {
       recordSolution(id, nullptr, cost, elapsed_ms, result);
     } else if ((child.state.position - goal.position).norm() <= options_.goal_connection_radius_m) {

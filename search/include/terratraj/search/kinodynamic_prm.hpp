@@ -88,6 +88,8 @@ class KinodynamicPrm final : public Planner {
 
  private:
   double uniform();  // [0, 1)
+  // Planning time of the earlier calls plus this one's so far [ms] (the result's clock).
+  double plannedMs(const TerminationCondition& condition) const;
   bool sampleMilestone(Eigen::Vector2d& position, double& speed);
   std::int32_t addNode(const PrmNode& node);
   void tryGoalConnection(std::int32_t id, double elapsed_ms, PlanResult& result);
