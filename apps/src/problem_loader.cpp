@@ -397,7 +397,7 @@ RefineSpec parseRefine(const Context& ctx, const Field& field) {
       {"method", "interval_length_m", "min_intervals", "max_intervals", "min_clearance_m",
        "limit_margin", "speed_margin", "control_effort", "max_iterations", "time_limit_s",
        "parametric_max_length_m", "parametric_min_clearance_m", "coarse_interval_length_m",
-       "endpoint_tolerance_m"});
+       "endpoint_tolerance_m", "warm_start_time_ratio"});
   RefineSpec refine;
   if (const std::optional<Field> method = map.find("method")) {
     refine.method = readEnum<refine::RefineMethod>(
@@ -425,6 +425,7 @@ RefineSpec parseRefine(const Context& ctx, const Field& field) {
   map.readNumberInto("coarse_interval_length_m", Range::positive(),
                      refine.coarse_interval_length_m);
   map.readNumberInto("endpoint_tolerance_m", Range::positive(), refine.endpoint_tolerance_m);
+  map.readNumberInto("warm_start_time_ratio", Range::atLeast(1.0), refine.warm_start_time_ratio);
   return refine;
 }
 

@@ -235,6 +235,7 @@ refine::RefinementOptions refinementOptions(const ProblemSpec& problem,
   options.transcription.model.control_effort_weight = spec.control_effort;
   options.coarse_interval_length_m = spec.coarse_interval_length_m;
   options.endpoint_tolerance_m = spec.endpoint_tolerance_m;
+  options.warm_start_time_ratio = spec.warm_start_time_ratio;
   options.time_limit_s = spec.time_limit_s;  // the whole refinement: solves get what is left
   options.parametric = boundaryValueOptions(problem);  // its method is set per refinement
   if (std::optional<std::string> why = refine::validateRefinementOptions(options)) {

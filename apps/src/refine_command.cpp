@@ -49,6 +49,7 @@ nlohmann::json refineReportJson(const refine::RefinementResult& r,
       {"clearance_constraint_m", r.clearance_used_m},
       {"corridor_radius_m", r.corridor_radius_m},
       {"guess_shortcut_m", r.guess_shortcut_m},
+      {"barrier", r.warm_start ? "warm" : "adaptive"},
       {"coarse",
        {{"intervals", r.coarse_intervals},
         {"status", r.coarse_intervals > 0 ? nlohmann::json(ocp::solveStatusName(r.coarse_status))

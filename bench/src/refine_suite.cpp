@@ -76,6 +76,10 @@ nlohmann::json refineOne(const bench::BenchmarkWorld& w, const refine::Candidate
   out["status"] = ocp::solveStatusName(r.status);
   out["reason"] = r.reason;
   out["method"] = refine::refineMethodName(r.method);
+  out["iterations"] = r.iterations;
+  out["intervals"] = r.intervals;
+  out["coarse_intervals"] = r.coarse_intervals;
+  out["barrier"] = r.warm_start ? "warm" : "adaptive";
   out["candidate_s"] = duration(candidate);
   out["lower_bound_s"] = w.lowerBoundTime();
   if (r.status != ocp::SolveStatus::kConverged) {

@@ -271,6 +271,15 @@ Eigen::VectorXd initialVariables(const TranscriptionNlp& nlp, const BoundaryValu
 
 // Exact for collocation, except with the Segway: its look-ups are piecewise bilinear, so
 // their second derivatives are impulses on the grid lines that differences blow up.
+// Ipopt's barrier strategy (TranscriptionBarrier).
+bool setBarrier(Ipopt::OptionsList& ipopt, const DirectTranscriptionOptions& options) {
+  if (options.barrier == TranscriptionBarrier::kAdaptive) {
+    return ipopt.SetStringValue("mu_strategy", "adaptive");
+  }
+  return ipopt.SetStringValue("mu_strategy", "monotone") &&
+         ipopt.SetNumericValue("mu_init", options.warm_mu_init);
+}
+
 TranscriptionHessian defaultHessian(const TranscriptionNlp& nlp) {
   return nlp.hasExactHessian() && !nlp.model().options().segway
              ? TranscriptionHessian::kExact
@@ -311,8 +320,7 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
       detail::setBaseOptions(ipopt, base) &&
       ipopt.SetStringValue("hessian_approximation",
                            hessian == TranscriptionHessian::kExact ? "exact" : "limited-memory") &&
-      ipopt.SetStringValue("nlp_scaling_method", scaling) &&
-      ipopt.SetStringValue("mu_strategy", "adaptive") &&
+      ipopt.SetStringValue("nlp_scaling_method", scaling) && setBarrier(ipopt, options) &&
       ipopt.SetStringValue("print_timing_statistics", options.print_level > 0 ? "yes" : "no") &&
       ipopt.SetNumericValue("tol", options.tolerance) &&
       // Near a kink of the terrain (bicubic is C1) the dual infeasibility can stall just
@@ -421,6 +429,9 @@ std::optional<std::string> validateTranscriptionOptions(const DirectTranscriptio
   if (!(o.map_margin >= 0.0)) return "map_margin must be >= 0";
   if (o.time_limit_s && !(*o.time_limit_s >= 0.0)) return "time_limit_s must be >= 0";
   if (!(o.tolerance > 0.0) || !(o.constraint_tolerance > 0.0)) return "tolerances must be > 0";
+  if (!(o.warm_mu_init > 0.0) || !std::isfinite(o.warm_mu_init)) {
+    return "warm_mu_init must be > 0";
+  }
   if (o.scheme == TranscriptionScheme::kMultipleShooting &&
       o.hessian == TranscriptionHessian::kExact) {
     return "the exact Hessian is available for collocation only; multiple shooting uses "

@@ -181,6 +181,7 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
     if (out.status == SolveStatus::kConverged) break;
     if (out.solution.result.status != SolveStatus::kConverged || !out.verified.ok) break;
     start = out.solution.asGuess();
+    transcription.barrier = options.resolve_barrier;
     // A curvature rule broken at rest: the rows that hold it there.
     if (!transcription.rest_curvature &&
         (standsStill(problem.start) || standsStill(problem.goal)) &&

@@ -12,6 +12,7 @@
 #include "terratraj/ocp/transcription_guess.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
 #include "terratraj/ocp/transcription_solver.hpp"
+#include "terratraj/search/bang_bang_bound.hpp"
 
 namespace terratraj::refine {
 
@@ -478,6 +479,7 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
   // A near-optimal candidate goes straight to the fine mesh: at 1 m intervals the clearance
   // held only at the points let a TAEASL route settle 2 % longer, round an unframed obstacle.
   ocp::TranscriptionGuess start = guess;
+  bool coarse_converged = false;
   const int coarse_intervals = std::clamp(
       static_cast<int>(std::ceil(length / options_.coarse_interval_length_m)),
       std::min(options_.min_intervals, transcription.intervals), transcription.intervals);
@@ -501,7 +503,22 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
     out.iterations = solution.result.iterations;
     out.coarse_intervals = coarse_intervals;
     out.coarse_status = solution.result.status;
-    if (solution.result.status == ocp::SolveStatus::kConverged) start = solution.asGuess();
+    coarse_converged = solution.result.status == ocp::SolveStatus::kConverged;
+    if (coarse_converged) start = solution.asGuess();
+  }
+  // Started near a locally optimal solution (the coarse mesh's, or a candidate that drives its
+  // path about as fast as the limits allow), a monotone barrier from a small mu takes half the
+  // iterations of the adaptive one; from a slow or wiggly guess it crawls.
+  const bool near_optimal =
+      coarse_converged ||
+      start.finalTime() <=
+          options_.warm_start_time_ratio * search::bangBangTime(length, bvp_->start.v, bvp_->goal.v,
+                                                                bvp_->goal.v, bvp_->limits.v_max,
+                                                                bvp_->limits.a_max);
+  out.warm_start = near_optimal;
+  if (out.warm_start) {
+    solve.transcription.barrier = ocp::TranscriptionBarrier::kWarm;
+    solve.resolve_barrier = ocp::TranscriptionBarrier::kWarm;
   }
   if (deadline.limit()) solve.time_limit_s = deadline.left();
   ocp::VerifiedTranscription result =

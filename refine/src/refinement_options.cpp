@@ -65,6 +65,7 @@ std::optional<std::string> validateRefinementOptions(const RefinementOptions& o)
     return "shortcut_clearance_m must be a finite number >= 0";
   }
   if (!(o.shortcut_gain > 0.0 && o.shortcut_gain <= 1.0)) return "shortcut_gain must be in (0, 1]";
+  if (!(o.warm_start_time_ratio >= 1.0)) return "warm_start_time_ratio must be >= 1";
   if (!(o.corridor_radius_m >= 0.0) || !std::isfinite(o.corridor_radius_m)) {
     return "corridor_radius_m must be a finite number >= 0 (got " +
            formatNumber(o.corridor_radius_m) + ")";

@@ -99,11 +99,13 @@ TEST_F(RefineCommandTest, PlanRefineOnForestKeepsEveryClassAndFollowsTheContract
     const nlohmann::json& refined = s["refined"];
     for (const char* key :
          {"status", "cost_s", "file", "method", "iterations", "homotopy", "homotopy_kept",
-          "max_abs_pitch_rad", "max_abs_roll_rad", "constraint_violation", "cost_ratio"}) {
+          "max_abs_pitch_rad", "max_abs_roll_rad", "constraint_violation", "cost_ratio",
+          "barrier"}) {
       EXPECT_TRUE(refined.contains(key)) << key;
     }
     EXPECT_EQ(refined["status"], "converged");
     EXPECT_EQ(refined["method"], "collocation");
+    EXPECT_EQ(refined["barrier"], "warm");  // TAEASL's routes drive at the limits
     // The class the planner named is the one the refinement started in and kept.
     EXPECT_EQ(s["homotopy_frames"], s["homotopy"]);
     EXPECT_EQ(refined["homotopy"], s["homotopy"]);
@@ -219,6 +221,7 @@ TEST_F(RefineCommandTest, BadRefineKeysNameTheKey) {
            {"refine: {limit_margin: 0.7}\n", "refine.limit_margin"},
            {"refine: {interval_length_m: -1}\n", "refine.interval_length_m"},
            {"refine: {min_intervals: 50, max_intervals: 10}\n", "refine.max_intervals"},
+           {"refine: {warm_start_time_ratio: 0.5}\n", "refine.warm_start_time_ratio"},
            {"refine: {time_limit_s: .nan}\n", "refine.time_limit_s"}}) {
     SCOPED_TRACE(yaml);
     const std::string problem = write("bad.yaml", problemYaml("hills", yaml));

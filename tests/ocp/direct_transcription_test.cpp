@@ -443,6 +443,40 @@ TEST(DirectTranscription, WarmStartsFromAnXyPathAndRefinesTheMesh) {
   EXPECT_LT(s.verified.violation.amount, 0.25) << s.verified.violation.limit;
 }
 
+// From a converged solution put on a mesh twice as fine (what a verification round does), the
+// warm barrier (monotone from a small mu) reaches the optimum Ipopt's adaptive one reaches.
+// (Its iterations are compared where it pays, on planner candidates: CandidateRefiner tests.)
+TEST(DirectTranscription, TheWarmBarrierReachesTheAdaptiveOptimumFromASolution) {
+  const terrain::ElevationMap map = fixtures::roughMap();
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::PointAttitudeModel vehicle(surface);
+  BoundaryValueProblem problem = restToRest(2.0, 2.0, 14.0, 10.0, 0.0);
+  problem.goal.heading = kPi / 2;
+  problem.limits.v_max = 1.0;
+  problem.limits.a_max = 0.5;
+  problem.limits.kappa_max = 1.0;
+  problem.limits.sigma_max = 2.0;
+  DirectTranscriptionOptions options;
+  options.intervals = 25;
+  options.linear_controls = true;
+  options.model.control_effort_weight = 1e-3;
+  const TranscriptionSolution coarse =
+      solveDirectTranscription(vehicle, problem, straightGuess(problem), options);
+  ASSERT_EQ(coarse.result.status, SolveStatus::kConverged) << coarse.result.reason;
+  options.intervals = 50;
+  const TranscriptionSolution adaptive =
+      solveDirectTranscription(vehicle, problem, coarse.asGuess(), options);
+  options.barrier = TranscriptionBarrier::kWarm;
+  const TranscriptionSolution warm =
+      solveDirectTranscription(vehicle, problem, coarse.asGuess(), options);
+  ASSERT_EQ(adaptive.result.status, SolveStatus::kConverged) << adaptive.result.reason;
+  ASSERT_EQ(warm.result.status, SolveStatus::kConverged) << warm.result.reason;
+  EXPECT_NEAR(warm.final_time, adaptive.final_time, 1e-4 * adaptive.final_time);
+  EXPECT_LT(warm.final_time, coarse.final_time);  // the finer mesh's optimum, not the guess
+  RecordProperty("iterations_adaptive", adaptive.result.iterations);
+  RecordProperty("iterations_warm", warm.result.iterations);
+}
+
 TEST(DirectTranscription, KeepsItsClearanceFromLethalCells) {
   // Flat 20 m x 20 m with a lethal block across the straight line from (3, 10) to (17, 10).
   terrain::ElevationMap map = fixtures::flatMap();

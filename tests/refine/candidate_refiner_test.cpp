@@ -187,6 +187,37 @@ TEST(CandidateRefiner, AWigglyCandidateStartsFromItsShortcut) {
   EXPECT_LT(r.costRatio(), 0.8);
 }
 
+// A candidate that drives its path about as fast as the limits allow (here a refined
+// trajectory, refined again) starts Ipopt's barrier warm and needs fewer iterations than with
+// the adaptive barrier, to the same trajectory; refine.warm_start_time_ratio decides. A slow
+// candidate (the x,y path's derived profile, which stops at its corners) starts adaptive.
+TEST(CandidateRefiner, ANearOptimalCandidateStartsTheBarrierWarm) {
+  terrain::ElevationMap map = testing::flatMap(64, 96);
+  testing::block(map, 10.0, 9.0, 14.0, 12.0);
+  auto world = testing::worldOn(std::move(map), {3.0, 8.0}, {21.0, 8.0});
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  const ReferenceFrames frames = framesOf(*world);
+  const RefinementResult first = CandidateRefiner(world->problem, bvp, frames)
+                                     .refine(xyPath({{3.0, 8.0}, {8.0, 6.0}, {21.0, 8.0}}));
+  expectSound(first, world->problem, frames);
+  EXPECT_FALSE(first.warm_start);
+  const models::Trajectory& candidate = first.verified.trajectory;
+  const RefinementResult warm = CandidateRefiner(world->problem, bvp, frames).refine(candidate);
+  expectSound(warm, world->problem, frames);
+  EXPECT_TRUE(warm.warm_start);
+  RefinementOptions options;
+  options.warm_start_time_ratio = 1.0;  // it turns: slower than the straight bang-bang bound
+  const RefinementResult adaptive =
+      CandidateRefiner(world->problem, bvp, frames, options).refine(candidate);
+  expectSound(adaptive, world->problem, frames);
+  EXPECT_FALSE(adaptive.warm_start);
+  EXPECT_LT(warm.iterations, adaptive.iterations);
+  RecordProperty("iterations_warm", warm.iterations);
+  RecordProperty("iterations_adaptive", adaptive.iterations);
+  EXPECT_NEAR(warm.verified.final_time, adaptive.verified.final_time,
+              2e-3 * adaptive.verified.final_time);
+}
+
 TEST(CandidateRefiner, AutoPicksNewtonForShortClearPathsAndCollocationOtherwise) {
   const RefinementOptions options;
   std::string rule;

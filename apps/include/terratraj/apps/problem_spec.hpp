@@ -266,6 +266,9 @@ struct RefineSpec {
   double coarse_interval_length_m = 1.0;
   /// A candidate must start and end within this distance of the start and goal [m], > 0.
   double endpoint_tolerance_m = 0.5;
+  /// The fine solve starts Ipopt's barrier warm when its guess takes at most this multiple of
+  /// the bang-bang time along its own path (refine::RefinementOptions), >= 1.
+  double warm_start_time_ratio = 1.1;
 };
 /// The whole problem file.
 struct ProblemSpec {

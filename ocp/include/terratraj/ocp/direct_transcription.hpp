@@ -32,6 +32,19 @@ enum class TranscriptionScaling {
   kNone,
 };
 
+/// How Ipopt's barrier parameter mu starts and falls.
+enum class TranscriptionBarrier {
+  /// Ipopt's adaptive strategy, from a first mu it computes: robust from a rough guess (a
+  /// straight line, a Dubins word, a planner's wiggly first solution).
+  kAdaptive,
+  /// Monotone from DirectTranscriptionOptions::warm_mu_init: for a guess already close to a
+  /// feasible, locally optimal solution (a near-optimal planner candidate, an earlier round's
+  /// or a coarser mesh's solution), where the adaptive strategy first moves away from it. About
+  /// half the iterations there; from a rough guess it can take several times more (measured
+  /// in docs/benchmarks.md, "Refinement of a planner candidate").
+  kWarm,
+};
+
 /// Re-solving with more intervals where the integration error between nodes is large.
 struct MeshRefinementOptions {
   int max_rounds = 0;        ///< 0: no refinement
@@ -62,6 +75,8 @@ struct DirectTranscriptionOptions {
   std::optional<double> time_limit_s;  ///< wall clock for the whole solve [s]
   double tolerance = 1e-6;             ///< Ipopt's tol (scaled KKT error)
   double constraint_tolerance = 1e-8;  ///< Ipopt's constr_viol_tol (unscaled) [state units]
+  TranscriptionBarrier barrier = TranscriptionBarrier::kAdaptive;
+  double warm_mu_init = 1e-6;  ///< kWarm's first barrier parameter (scaled), > 0
   MeshRefinementOptions refinement;
   int print_level = 0;  ///< Ipopt's print_level (0: silent; 5: its iteration log on stdout)
   TranscriptionModelOptions model;  ///< control effort, Segway constraints, clearance

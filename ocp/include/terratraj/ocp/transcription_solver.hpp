@@ -39,7 +39,12 @@ struct TranscriptionSolveOptions {
   double speed_margin = 0.0005;
   /// ... and kappa_max, sigma_max, pitch_max, roll_max by this one, in [0, 0.5).
   double limit_margin = 0.002;
-  int max_rounds = 4;       ///< re-solves after the first, >= 0
+  int max_rounds = 4;  ///< re-solves after the first, >= 0
+  /// The barrier strategy of the re-solves, which start from the previous round's solution
+  /// (the first round uses transcription.barrier). kWarm saves iterations when the rounds only
+  /// refine the mesh of a near-optimal solution (refinement of a planner candidate); from Dubins
+  /// seeds on the real DEMs it stalled re-solves with widened margins (docs/benchmarks.md).
+  TranscriptionBarrier resolve_barrier = TranscriptionBarrier::kAdaptive;
   int max_intervals = 800;  ///< doubling stops here, >= transcription.intervals
   /// A re-simulation over a lethal cell raises the clearance constraint (when
   /// transcription.model.clearance has a map) to this [m], >= 0.

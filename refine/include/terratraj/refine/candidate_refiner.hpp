@@ -76,6 +76,8 @@ struct RefinementResult {
   double corridor_radius_m = 0.0;  ///< the corridor of the class retry (0: none needed)
   double guess_shortcut_m = 0.0;   ///< how much shorter the shortcut guess was [m] (0: not used)
   ocp::SolveStatus coarse_status = ocp::SolveStatus::kError;  ///< the coarse solve's outcome
+  /// The fine solve started Ipopt's barrier warm (RefinementOptions::warm_start_time_ratio).
+  bool warm_start = false;
   int margin_rounds = 0;           ///< fine direct transcription solves (1 + margin retries used)
   double speed_margin_used = 0.0;  ///< the margins of the last solve (fractions)
   double limit_margin_used = 0.0;

@@ -73,6 +73,12 @@ struct RefinementOptions {
     options.linear_controls = true;
     return options;
   }();
+  /// The fine direct-transcription solve starts Ipopt's barrier warm
+  /// (ocp::TranscriptionBarrier::kWarm: monotone from a small mu) when its guess is near a
+  /// local optimum: the coarse mesh's converged solution, or a guess whose duration is at most
+  /// this multiple of the bang-bang time along its own path (accelerating and braking at a_max
+  /// to and from v_max, 001_... IV.A), >= 1. Else Ipopt's adaptive barrier.
+  double warm_start_time_ratio = 1.1;
   /// Direct transcription imposes the limits at its points only: it is solved with kappa_max,
   /// sigma_max, pitch_max and roll_max lowered by this fraction, in [0, 0.5), so that the
   /// re-simulated trajectory holds the true limits between the points too ...
