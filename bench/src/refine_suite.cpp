@@ -130,12 +130,17 @@ class RefineSuite final : public BenchmarkSuite {
   }
 
   nlohmann::json summarize(const nlohmann::json& rows) const override {
-    std::map<std::string, std::vector<double>> ratios;
-    std::vector<double> all, bound;
+    std::map<std::string, std::vector<double>> ratios, times, iterations;
+    std::vector<double> all, bound, all_times;
     int candidates = 0, converged = 0, kept = 0, checked = 0;
     for (const nlohmann::json& row : rows) {
       for (const nlohmann::json& c : row.value("candidates", nlohmann::json::array())) {
         ++candidates;
+        // Time and iterations of every refinement, converged or not (the time was spent).
+        const std::string planner = row.value("planner", "");
+        times[planner].push_back(c.value("refine_ms", 0.0));
+        all_times.push_back(c.value("refine_ms", 0.0));
+        iterations[planner].push_back(c.value("iterations", 0.0));
         if (c.value("status", "") != "converged") continue;
         ++converged;
         kept += c.value("class_kept", false);
@@ -147,13 +152,22 @@ class RefineSuite final : public BenchmarkSuite {
     }
     nlohmann::json by_planner = nlohmann::json::object();
     for (auto& [planner, values] : ratios) by_planner[planner] = distributionJson(values);
+    nlohmann::json ms_by_planner = nlohmann::json::object();
+    for (auto& [planner, values] : times) ms_by_planner[planner] = distributionJson(values);
+    nlohmann::json iterations_by_planner = nlohmann::json::object();
+    for (auto& [planner, values] : iterations) {
+      iterations_by_planner[planner] = distributionJson(values);
+    }
     return {{"candidates", candidates},
             {"converged", converged},
             {"class_kept", kept},
             {"check_ok", checked},
             {"refined_over_candidate", distributionJson(all)},
             {"refined_over_lower_bound", distributionJson(bound)},
-            {"by_planner", by_planner}};
+            {"by_planner", by_planner},
+            {"refine_ms", distributionJson(all_times)},
+            {"refine_ms_by_planner", ms_by_planner},
+            {"iterations_by_planner", iterations_by_planner}};
   }
 
   std::string summaryText(const nlohmann::json& summary) const override {
@@ -166,6 +180,13 @@ class RefineSuite final : public BenchmarkSuite {
     for (const auto& [planner, d] : summary["by_planner"].items()) {
       text << "  " << planner << ": mean " << figureText(d, "mean") << " (" << d["count"]
            << " refinements)\n";
+    }
+    text << "time a refinement [ms]: median " << figureText(summary["refine_ms"], "median")
+         << ", p90 " << figureText(summary["refine_ms"], "p90") << '\n';
+    for (const auto& [planner, d] : summary["refine_ms_by_planner"].items()) {
+      text << "  " << planner << ": median " << figureText(d, "median") << " ms, "
+           << figureText(summary["iterations_by_planner"][planner], "median")
+           << " Ipopt iterations (median)\n";
     }
     return text.str();
   }

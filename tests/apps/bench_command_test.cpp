@@ -88,6 +88,33 @@ TEST_F(BenchCommandTest, ConvergenceRowsAreReSimulatedResults) {
   EXPECT_NE(r.err.find("[6/6] flat_fan/0/collocation"), std::string::npos) << r.err;
 }
 
+// The refine suite: each refinement's time, Ipopt iterations and barrier, and the summary's
+// time and iteration distributions (issue 17's 100 ms target is read from them).
+TEST_F(BenchCommandTest, RefineRowsAndSummaryGiveTimesAndIterations) {
+  const testing::CliRun r = run({"bench", "refine", "--quick", "--cases", "0", "--out",
+                                 path("r.json"), "--json"});  // the PRM's first, quick hills
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json result = read(path("r.json"));
+  ASSERT_EQ(result["rows"].size(), 1u);
+  const nlohmann::json& row = result["rows"][0];
+  EXPECT_EQ(row["planner"], "prm_first");
+  ASSERT_GE(row["candidates"].size(), 1u);
+  int count = 0;
+  for (const nlohmann::json& c : row["candidates"]) {
+    SCOPED_TRACE(c.dump());
+    EXPECT_EQ(c["status"], "converged");
+    EXPECT_GT(c["iterations"].get<int>(), 0);
+    EXPECT_GT(c["intervals"].get<int>(), 0);
+    EXPECT_TRUE(c["barrier"] == "warm" || c["barrier"] == "adaptive");
+    EXPECT_GT(c["refine_ms"].get<double>(), 0.0);
+    ++count;
+  }
+  const nlohmann::json& summary = result["summary"];
+  EXPECT_EQ(summary["refine_ms"]["count"], count);
+  EXPECT_EQ(summary["refine_ms_by_planner"]["prm_first"]["count"], count);
+  EXPECT_GT(summary["iterations_by_planner"]["prm_first"]["median"].get<double>(), 0.0);
+}
+
 // Two shards merged hold exactly the cases of the whole suite; one shard alone is reported as
 // incomplete; merging files of different suites is refused.
 TEST_F(BenchCommandTest, ShardsMergeIntoTheWholeSuite) {
