@@ -205,9 +205,13 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) {
   termination.start();
   PlanResult result;
   const LatticeGraph& graph = *graph_;
+  // Times run in planning time summed over the calls [ms].
+  const double planned_before_ms = progress_ ? progress_->planned_ms : 0.0;
+  const auto now_ms = [&] { return planned_before_ms + millisecondsSince(started); };
   const auto finish = [&](PlanResult& r) -> PlanResult {
     applyPlanVerdict(graph.problem(), r);
-    r.planning_time_ms = millisecondsSince(started);
+    r.planning_time_ms = now_ms();
+    if (progress_) progress_->planned_ms = r.planning_time_ms;
     return r;
   };
   if (graph.error()) {
@@ -225,8 +229,6 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) {
         std::make_unique<Progress>(graph, anytime ? std::max(1.0, options_.initial_epsilon) : 1.0);
   }
   Progress& p = *progress_;
-  const double planned_before_ms = p.planned_ms;
-  const auto now_ms = [&] { return planned_before_ms + millisecondsSince(started); };
   bool stopped = false;
   if (!p.finished) {
     p.search.beginCall();
@@ -277,10 +279,7 @@ PlanResult LatticePlanner::solve(TerminationCondition termination) {
     result.reason = detail::noPathReason(graph, p.last_failure, p.exhausted, p.search.expansions(),
                                          p.search.nodeCount());
   }
-  applyPlanVerdict(graph.problem(), result);
-  result.planning_time_ms = now_ms();
-  p.planned_ms = result.planning_time_ms;
-  return result;
+  return finish(result);
 }
 
 }  // namespace terratraj::search
