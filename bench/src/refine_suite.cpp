@@ -92,7 +92,11 @@ nlohmann::json refineOne(const bench::BenchmarkWorld& w, const refine::Candidate
   std::vector<Eigen::Vector2d> before, after;
   for (const auto& s : candidate.samples) before.emplace_back(s.x, s.y);
   for (const auto& s : r.verified.trajectory.samples) after.emplace_back(s.x, s.y);
-  out["class_kept"] = frames.signatureOf(before) == frames.signatureOf(after);
+  // Both closed at the exact start and goal: the candidate may stop anywhere in the goal region.
+  const Eigen::Vector2d& from = w.problem.start.position;
+  const Eigen::Vector2d& to = w.problem.goal.position;
+  out["class_kept"] =
+      frames.signatureBetween(from, before, to) == frames.signatureBetween(from, after, to);
   search::CheckTolerances tolerances;
   tolerances.relative = 1e-3;
   const search::CheckReport check =

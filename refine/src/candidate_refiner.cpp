@@ -189,6 +189,15 @@ TrajectoryFigures CandidateRefiner::measure(
   return f;
 }
 
+std::string CandidateRefiner::classOf(const std::vector<Eigen::Vector2d>& path) const {
+  // Closed at the exact ends: a candidate stops anywhere in the goal region and a solver within
+  // its tolerance, and a frame through the goal must count the same for both.
+  return frames_
+      ->signatureBetween(Eigen::Vector2d(bvp_->start.x, bvp_->start.y), path,
+                         Eigen::Vector2d(bvp_->goal.x, bvp_->goal.y))
+      .toString();
+}
+
 TrajectoryFigures CandidateRefiner::figuresOf(const models::Trajectory& trajectory) const {
   TrajectoryFigures f;
   const std::vector<models::TrajectorySample>& s = trajectory.samples;
@@ -208,7 +217,7 @@ TrajectoryFigures CandidateRefiner::figuresOf(const models::Trajectory& trajecto
   }
   if (!s.empty()) f.duration_s = s.back().t - s.front().t;
   f.length_m = trajectory.planarLength();
-  f.homotopy = frames_->signatureOf(polyline(trajectory)).toString();
+  f.homotopy = classOf(polyline(trajectory));
   return f;
 }
 
@@ -365,8 +374,7 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
     const std::vector<Eigen::Vector2d> shortcut =
         shortcutPath(polyline(out.candidate), options_.shortcut_clearance_m);
     const double length = polylineLength(shortcut);
-    if (length < options_.shortcut_gain * before.length_m &&
-        frames_->signatureOf(shortcut).toString() == before.homotopy) {
+    if (length < options_.shortcut_gain * before.length_m && classOf(shortcut) == before.homotopy) {
       if (Expected<ocp::TranscriptionGuess> shorter =
               ocp::guessFromPath(shortcut, *bvp_, options_.guess_spacing_m)) {
         guess = std::move(shorter);

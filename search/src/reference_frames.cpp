@@ -403,4 +403,17 @@ HomotopySignature ReferenceFrames::signatureOf(const std::vector<Eigen::Vector2d
   return signature;
 }
 
+HomotopySignature ReferenceFrames::signatureBetween(const Eigen::Vector2d& start,
+                                                    const std::vector<Eigen::Vector2d>& polyline,
+                                                    const Eigen::Vector2d& goal) const {
+  HomotopySignature signature;
+  Eigen::Vector2d previous = start;
+  for (const Eigen::Vector2d& point : polyline) {
+    appendCrossings(previous, point, signature);
+    previous = point;
+  }
+  appendCrossings(previous, goal, signature);
+  return signature;
+}
+
 }  // namespace terratraj::search

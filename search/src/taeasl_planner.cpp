@@ -56,6 +56,7 @@ class TaeaslSearch {
   TaeaslSearch(const LatticeGraph& graph, const ReferenceFrames& frames, double weight, int wanted,
                int max_signature_length, SearchStatistics& stats)
       : graph_(graph),
+        frames_(frames),
         adapter_(frames),
         cache_(graph),
         w_(weight),
@@ -211,6 +212,21 @@ class TaeaslSearch {
     return classIndex(signature_);
   }
 
+  // The class of a path in `klass` that ends at goal state `t`, closed by the segment to the exact
+  // goal (ReferenceFrames::signatureBetween: what a refinement, which ends there, is compared
+  // with; two ends of one route in the goal region on either side of a frame are one class);
+  // -1 when its signature grows past max_signature_length (pruned).
+  std::int32_t closedClass(std::int32_t klass, const LatticeState& t) {
+    signature_ = classes_[klass].signature;
+    frames_.appendCrossings(graph_.position(t), graph_.problem().goal.position, signature_);
+    if (signature_ == classes_[klass].signature) return klass;
+    if (static_cast<int>(signature_.size()) > max_signature_length_) {
+      ++stats_.pruned_signatures;
+      return -1;
+    }
+    return classIndex(signature_);
+  }
+
   // Pops the top of `klass`'s list and relaxes its successors.
   void expandTop(std::int32_t klass, Clock::time_point started, PlanResult& result) {
     const QueueEntry top = classes_[klass].open.top();
@@ -233,6 +249,8 @@ class TaeaslSearch {
   void relax(std::int32_t current, double g2, int e, const LatticeState& t, std::int32_t next_class,
              Clock::time_point started, PlanResult& result) {
     const bool goal = graph_.inGoal(t);
+    if (goal) next_class = closedClass(next_class, t);
+    if (next_class < 0) return;
     if (goal ? g2 >= classes_[next_class].best_goal_g : g2 + graph_.heuristic(t) >= bound_) {
       return;
     }
@@ -258,6 +276,7 @@ class TaeaslSearch {
   }
 
   const LatticeGraph& graph_;
+  const ReferenceFrames& frames_;
   const FramesAdapter adapter_;
   detail::EdgeCache cache_;
   double w_;

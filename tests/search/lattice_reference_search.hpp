@@ -19,7 +19,8 @@ namespace terratraj::search::testing {
 
 /// Cheapest cost to the goal region for every homotopy class whose best cost is at most the
 /// `classes`-th cheapest class's (all classes when `frames` is null: one class ""), signatures
-/// longer than max_length excluded.
+/// longer than max_length excluded; a path's class is its signature closed by the segment from
+/// its goal state to the exact goal (ReferenceFrames::signatureBetween).
 inline std::map<std::string, double> referenceCosts(const LatticeGraph& graph,
                                                     const ReferenceFrames* frames, int max_length,
                                                     int classes) {
@@ -64,8 +65,13 @@ inline std::map<std::string, double> referenceCosts(const LatticeGraph& graph,
         if (static_cast<int>(signature.size()) > max_length) continue;
       }
       const double cost = item.cost + evaluation.cost;
+      const bool goal = graph.inGoal(t);
+      if (goal && frames != nullptr) {  // closed at the exact goal
+        frames->appendCrossings(graph.position(t), graph.problem().goal.position, signature);
+        if (static_cast<int>(signature.size()) > max_length) continue;
+      }
       const std::string name = signature.toString();
-      if (graph.inGoal(t)) {
+      if (goal) {
         auto [it, inserted] = goal_costs.emplace(name, cost);
         if (!inserted && cost < it->second) it->second = cost;
         continue;

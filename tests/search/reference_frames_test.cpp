@@ -110,6 +110,33 @@ TEST_F(ReferenceFramesOneBlock, VertexOnTheFrameCountsOnce) {
   EXPECT_EQ(signature({{15, 15}, {15, 25}}), "");
 }
 
+// Goal (30, 20) on frame a. Routes that stop near it (a goal region, a solver's tolerance) a
+// hair on either side of the frame differ by one crossing when open; closed at the exact goal
+// they get their route's class: north "" and south "a+".
+TEST_F(ReferenceFramesOneBlock, PathsClosedAtTheGoalGetTheirRoutesClassWhenAFramePassesIt) {
+  const Vector2d start(10, 20);
+  const Vector2d goal(30, 20);
+  const Polyline north_on{{10, 20}, {15, 25}, {25, 25}, {29.5, 20}};
+  const Polyline north_below{{10, 20}, {15, 25}, {25, 25}, {29.5, 20}, {29.999, 19.999999}};
+  const Polyline south_below{{10, 20}, {15, 15}, {25, 15}, {29.5, 19.5}};
+  const Polyline south_on{{10, 20}, {15, 15}, {25, 15}, {29.5, 19.5}, {29.9, 20}};
+  EXPECT_EQ(signature(north_on), "");
+  EXPECT_EQ(signature(north_below), "a-");
+  EXPECT_EQ(signature(south_below), "");
+  EXPECT_EQ(signature(south_on), "a+");
+  for (const Polyline& north : {north_on, north_below}) {
+    EXPECT_EQ(frames.signatureBetween(start, north, goal).toString(), "");
+  }
+  for (const Polyline& south : {south_on, south_below}) {
+    EXPECT_EQ(frames.signatureBetween(start, south, goal).toString(), "a+");
+  }
+  // Closed at the start too: from (35, 21), north of the frame, to a path south of it.
+  EXPECT_EQ(frames.signatureOf({{35, 19}, {30, 18}}).toString(), "");
+  EXPECT_EQ(frames.signatureBetween({35, 21}, {{35, 19}, {30, 18}}, {25, 18}).toString(), "a-");
+  // No vertices: the segment start -> goal.
+  EXPECT_EQ(frames.signatureBetween({25, 15}, {}, {25, 25}).toString(), "a+");
+}
+
 TEST_F(ReferenceFramesOneBlock, SegmentsOffTheFramesAddNothing) {
   HomotopySignature s;
   frames.appendCrossings({1, 1}, {1.3, 1.2}, s);

@@ -55,6 +55,41 @@ TEST(TaeaslPlanner, RoutesOnEitherSideOfABlockGetDifferentSignatures) {
   EXPECT_NE(result.solutions[0].homotopy, result.solutions[1].homotopy);
 }
 
+// The block's frame runs along y = 6 (the start's lattice row) east to the map edge; the goal
+// lies 0.25 m south of it, so its region holds lattice states on the frame and south of it. A
+// route is named by its path closed at the exact goal: north of the block "a-" (it must cross
+// the frame to reach the goal), south "", wherever in the region each stops. Named by where
+// they stop instead, a north route stopping on the frame and a south one stopping south of it
+// would both be "".
+TEST(TaeaslPlanner, RoutesAreNamedByTheirPathsClosedAtTheExactGoal) {
+  terrain::ElevationMap map = flatMap(48, 80);
+  block(map, 11.0, 4.5, 13.0, 7.5);
+  auto world = worldOn(std::move(map), {2.0, 6.0}, {17.0, 5.75});
+  const LatticeGraph graph(world->problem, defaultPrimitives());
+  TaeaslOptions options;
+  options.homotopy_classes = 2;
+  TaeaslPlanner planner(graph, options);
+  ASSERT_EQ(planner.frames().size(), 1u);
+  const PlanResult result = planner.solve(TerminationCondition::timeLimit(60));
+  ASSERT_EQ(result.status, PlanStatus::kSolved) << result.reason;
+  ASSERT_EQ(result.solutions.size(), 2u);
+  std::set<std::string> names;
+  for (const PlanSolution& s : result.solutions) {
+    std::vector<Eigen::Vector2d> path;
+    for (const models::TrajectorySample& p : s.trajectory.samples) path.emplace_back(p.x, p.y);
+    EXPECT_EQ(
+        planner.frames()
+            .signatureBetween(world->problem.start.position, path, world->problem.goal.position)
+            .toString(),
+        s.homotopy);
+    const auto [lo, hi] = yRange(s.trajectory, 11.0, 13.0);
+    EXPECT_TRUE(lo > 7.5 || hi < 4.5) << "through the block? " << lo << " " << hi;
+    EXPECT_EQ(s.homotopy, lo > 7.5 ? "a-" : "");
+    names.insert(s.homotopy);
+  }
+  EXPECT_EQ(names.size(), 2u);
+}
+
 // Run to the end on a small map with two blocks, every class's solution costs what a brute-force
 // Dijkstra over (lattice state, signature) finds for that class, and the classes returned are
 // the cheapest ones.

@@ -57,7 +57,9 @@ struct TrajectoryFigures {
   /// The independent re-check: for a candidate against the planning problem (its goal region),
   /// for a refinement the verdict's (the exact goal within the solver's tolerances).
   models::CheckReport check;
-  std::string homotopy;  ///< signature over the refiner's reference frames
+  /// Signature over the refiner's reference frames of the path closed at the problem's exact
+  /// start and goal (ReferenceFrames::signatureBetween).
+  std::string homotopy;
 };
 
 /// The outcome of one refinement.
@@ -156,6 +158,8 @@ class CandidateRefiner {
   // Applies the worse-than-candidate rule and the total time.
   RefinementResult& finishRefinement(const TrajectoryFigures& before, RefinementResult& out,
                                      std::chrono::steady_clock::time_point started) const;
+  // The homotopy signature (as text) of a path closed at the problem's exact start and goal.
+  std::string classOf(const std::vector<Eigen::Vector2d>& path) const;
   // The figures without the check.
   TrajectoryFigures figuresOf(const models::Trajectory& trajectory) const;
   // Fills refined_figures, verdict, homotopy_kept and the final status from out.verified, the

@@ -88,6 +88,18 @@ class ReferenceFrames {
   /// fewer than two vertices.
   HomotopySignature signatureOf(const std::vector<Eigen::Vector2d>& polyline) const;
 
+  /// The signature of a path from `start` to `goal` [m, local] along `polyline`: the polyline
+  /// closed by the segments start -> its first vertex and its last vertex -> goal. Use it to
+  /// compare the classes of paths between the same two points that end near, not at, them (a
+  /// planner's goal region, a solver's tolerance): a frame that passes between a path's end and
+  /// the goal, or through the goal itself, then counts the same for every path. (An end point
+  /// exactly on a frame's line is on its left, by the half-open rules: a path that stops a hair
+  /// to the right of it would otherwise differ by one crossing from one that stops on it.)
+  /// An empty polyline gives the signature of the segment start -> goal.
+  HomotopySignature signatureBetween(const Eigen::Vector2d& start,
+                                     const std::vector<Eigen::Vector2d>& polyline,
+                                     const Eigen::Vector2d& goal) const;
+
  private:
   // A frame in the form the crossing test needs.
   struct FrameGeometry {
