@@ -79,6 +79,9 @@ nlohmann::json refineOne(const bench::BenchmarkWorld& w, const refine::Candidate
   out["iterations"] = r.iterations;
   out["intervals"] = r.intervals;
   out["coarse_intervals"] = r.coarse_intervals;
+  out["coarse_iterations"] = r.coarse_iterations;
+  out["guess_shortcut_m"] = r.guess_shortcut_m;
+  out["guess_retimed_s"] = r.guess_retimed_s;
   out["barrier"] = r.warm_start ? "warm" : "adaptive";
   out["candidate_s"] = duration(candidate);
   out["lower_bound_s"] = w.lowerBoundTime();

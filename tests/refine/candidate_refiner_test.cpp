@@ -221,7 +221,9 @@ TEST(CandidateRefiner, AWigglyCandidateStartsFromItsShortcut) {
 // A candidate that drives its path about as fast as the limits allow (here a refined
 // trajectory, refined again) starts Ipopt's barrier warm and needs fewer iterations than with
 // the adaptive barrier, to the same trajectory; refine.warm_start_time_ratio decides. A slow
-// candidate (the x,y path's derived profile, which stops at its corners) starts adaptive.
+// candidate (the x,y path's derived profile, which stops at its corners) is solved on the
+// coarse mesh first, whose solution starts the fine solve warm; without that coarse solve it
+// starts adaptive.
 TEST(CandidateRefiner, ANearOptimalCandidateStartsTheBarrierWarm) {
   terrain::ElevationMap map = testing::flatMap(64, 96);
   testing::block(map, 10.0, 9.0, 14.0, 12.0);
@@ -231,16 +233,21 @@ TEST(CandidateRefiner, ANearOptimalCandidateStartsTheBarrierWarm) {
   const RefinementResult first = CandidateRefiner(world->problem, bvp, frames)
                                      .refine(xyPath({{3.0, 8.0}, {8.0, 6.0}, {21.0, 8.0}}));
   expectSound(first, world->problem, frames);
-  EXPECT_FALSE(first.warm_start);
+  EXPECT_GT(first.coarse_intervals, 0);
+  EXPECT_EQ(first.coarse_status, ocp::SolveStatus::kConverged);
+  EXPECT_TRUE(first.warm_start);
   const models::Trajectory& candidate = first.verified.trajectory;
   const RefinementResult warm = CandidateRefiner(world->problem, bvp, frames).refine(candidate);
   expectSound(warm, world->problem, frames);
   EXPECT_TRUE(warm.warm_start);
+  EXPECT_EQ(warm.coarse_intervals, 0);  // near optimal: straight to the fine mesh
   RefinementOptions options;
   options.warm_start_time_ratio = 1.0;  // it turns: slower than the straight bang-bang bound
+  options.coarse_interval_length_m = options.interval_length_m;  // no coarse solve
   const RefinementResult adaptive =
       CandidateRefiner(world->problem, bvp, frames, options).refine(candidate);
   expectSound(adaptive, world->problem, frames);
+  EXPECT_EQ(adaptive.coarse_intervals, 0);
   EXPECT_FALSE(adaptive.warm_start);
   EXPECT_LT(warm.iterations, adaptive.iterations);
   RecordProperty("iterations_warm", warm.iterations);
@@ -338,7 +345,9 @@ TEST(CandidateRefiner, AFailedSolveKeepsTheCandidateAndSaysWhy) {
   EXPECT_FALSE(r.reason.empty());
   ASSERT_TRUE(r.candidate_figures.has_value());
   EXPECT_GT(r.candidate_figures->cost, 0.0);
-  EXPECT_EQ(r.iterations, 2);  // the fine mesh only (the candidate is not wiggly)
+  // Two on the coarse mesh (the x,y path's derived profile is slow), two on the fine one.
+  EXPECT_GT(r.coarse_intervals, 0);
+  EXPECT_EQ(r.iterations, 4);
 }
 
 // The exact minimum-time trajectory along the straight line from the world's start to its goal
@@ -383,6 +392,32 @@ models::Trajectory bangBangLine(const PlanningProblem& p) {
     t.samples.push_back(sample);
   }
   return t;
+}
+
+// A slow candidate along a good path (the straight line at half the speed, as a PRM's first
+// solution drives a path near its shortest): the optimiser starts from the path re-timed by the
+// speed pass (at 0.8 of the limits: about 1.25 x the minimum time instead of 2 x), solved on
+// the coarse mesh and then warm on the fine one, and ends at the minimum time along the line.
+TEST(CandidateRefiner, ASlowCandidateOnAGoodPathStartsFromItsPathRetimed) {
+  auto world = testing::makeWorld(terrain::TerrainKind::kFlat, 96, 1);
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  const ReferenceFrames frames = framesOf(*world);
+  RefinementOptions options;
+  options.method = RefineMethod::kCollocation;
+  const CandidateRefiner refiner(world->problem, bvp, frames, options);
+  models::Trajectory slow = bangBangLine(world->problem);
+  const double fastest = slow.samples.back().t;
+  for (models::TrajectorySample& sample : slow.samples) {
+    sample.t *= 2.0;
+    sample.v *= 0.5;
+  }
+  const RefinementResult r = refiner.refine(slow);
+  expectSound(r, world->problem, frames);
+  EXPECT_NEAR(r.guess_retimed_s, 0.75 * fastest, 0.05 * fastest);
+  EXPECT_EQ(r.guess_shortcut_m, 0.0);
+  EXPECT_GT(r.coarse_intervals, 0);
+  EXPECT_TRUE(r.warm_start);
+  EXPECT_NEAR(r.verified.final_time, fastest, 0.01 * fastest);
 }
 
 // A refinement that ends worse than its feasible candidate is not `converged`: the candidate is

@@ -75,8 +75,12 @@ struct RefinementResult {
   bool homotopy_kept = false;
   int intervals = 0;               ///< direct transcription's final interval count
   int coarse_intervals = 0;        ///< the coarse solve's intervals (0: none)
+  int coarse_iterations = 0;       ///< its Ipopt iterations (part of `iterations`)
   double corridor_radius_m = 0.0;  ///< the corridor of the class retry (0: none needed)
   double guess_shortcut_m = 0.0;   ///< how much shorter the shortcut guess was [m] (0: not used)
+  /// How much faster the candidate's path re-timed by the speed pass was than the candidate, for
+  /// a slow candidate whose shortcut is not used [s] (0: not used).
+  double guess_retimed_s = 0.0;
   ocp::SolveStatus coarse_status = ocp::SolveStatus::kError;  ///< the coarse solve's outcome
   /// The fine solve started Ipopt's barrier warm (RefinementOptions::warm_start_time_ratio).
   bool warm_start = false;
@@ -158,6 +162,9 @@ class CandidateRefiner {
   // Applies the worse-than-candidate rule and the total time.
   RefinementResult& finishRefinement(const TrajectoryFigures& before, RefinementResult& out,
                                      std::chrono::steady_clock::time_point started) const;
+  // The duration under which a guess along a path of `length` [m] counts as near optimal:
+  // warm_start_time_ratio x the bang-bang time along it [s].
+  double nearOptimalTime(double length) const;
   // The homotopy signature (as text) of a path closed at the problem's exact start and goal.
   std::string classOf(const std::vector<Eigen::Vector2d>& path) const;
   // The figures without the check.

@@ -51,9 +51,10 @@ struct RefinementOptions {
   double interval_length_m = 0.25;
   int min_intervals = 20;   ///< ... but at least this many, >= 1
   int max_intervals = 800;  ///< ... and at most this many, >= min_intervals
-  /// For a candidate whose shortcut guess is used (a wiggly one), a first solve on a coarse mesh
-  /// (one interval per this much length [m], > 0), whose solution (when it converges) starts
-  /// the fine one; skipped when it would not halve the intervals.
+  /// For a candidate whose shortcut guess is used (a wiggly one) or whose guess is slower than
+  /// warm_start_time_ratio x the bang-bang time along its path (a slow one), a first solve on a
+  /// coarse mesh (one interval per this much length [m], > 0), whose solution (when it
+  /// converges) starts the fine one; skipped when it would not halve the intervals.
   double coarse_interval_length_m = 1.0;
   /// Clearance kept from lethal and no-data cells [m], >= 0; lowered to half the candidate's
   /// own smallest clearance when that is less (a candidate through a narrow gap stays
@@ -77,7 +78,8 @@ struct RefinementOptions {
   /// (ocp::TranscriptionBarrier::kWarm: monotone from a small mu) when its guess is near a
   /// local optimum: the coarse mesh's converged solution, or a guess whose duration is at most
   /// this multiple of the bang-bang time along its own path (accelerating and braking at a_max
-  /// to and from v_max, 001_... IV.A), >= 1. Else Ipopt's adaptive barrier.
+  /// to and from v_max, 001_... IV.A), >= 1. Else Ipopt's adaptive barrier. A slower guess is
+  /// first solved on the coarse mesh (coarse_interval_length_m).
   double warm_start_time_ratio = 1.1;
   /// Direct transcription imposes the limits at its points only: it is solved with kappa_max,
   /// sigma_max, pitch_max and roll_max lowered by this fraction, in [0, 0.5), so that the
