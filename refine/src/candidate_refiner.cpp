@@ -190,9 +190,8 @@ TrajectoryFigures CandidateRefiner::measure(
 }
 
 double CandidateRefiner::nearOptimalTime(double length) const {
-  return options_.warm_start_time_ratio * search::bangBangTime(length, bvp_->start.v,
-                                                               bvp_->goal.v, bvp_->goal.v,
-                                                               bvp_->limits.v_max,
+  return options_.warm_start_time_ratio * search::bangBangTime(length, bvp_->start.v, bvp_->goal.v,
+                                                               bvp_->goal.v, bvp_->limits.v_max,
                                                                bvp_->limits.a_max);
 }
 
@@ -373,36 +372,8 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   const double reserve_s =
       2.0 * millisecondsSince(measure_started) / 1000.0 + 0.005 + 1e-6 * before.duration_s;
 
-  // A wiggly candidate (a PRM's first solution, with loops) starts the optimiser from its
-  // shortcut path instead, when that keeps the class: loops and detours cost iterations and
-  // can trap it.
   const ocp::TranscriptionGuess candidate_guess = *guess;
-  if (options_.shortcut_clearance_m > 0.0) {
-    const std::vector<Eigen::Vector2d> shortcut =
-        shortcutPath(polyline(out.candidate), options_.shortcut_clearance_m);
-    const double length = polylineLength(shortcut);
-    if (length < options_.shortcut_gain * before.length_m && classOf(shortcut) == before.homotopy) {
-      if (Expected<ocp::TranscriptionGuess> shorter =
-              ocp::guessFromPath(shortcut, *bvp_, options_.guess_spacing_m)) {
-        guess = std::move(shorter);
-        out.guess_shortcut_m = before.length_m - length;
-      }
-    }
-  }
-  // A slow candidate whose shortcut is not used (a PRM's first solution on a forest: its path
-  // near the shortest, its speed profile slow) starts from its own path re-timed by the
-  // forward-backward speed pass when that is faster: an evenly sampled, consistent guess (the
-  // PRM's own samples change speed at every milestone). Forest PRM first solutions: 54-142 ->
-  // 19-68 coarse iterations, the same optima (bench refine).
-  if (out.guess_shortcut_m == 0.0 && !(guess->finalTime() <= nearOptimalTime(before.length_m))) {
-    if (Expected<ocp::TranscriptionGuess> retimed =
-            ocp::guessFromPath(polyline(out.candidate), *bvp_, options_.guess_spacing_m)) {
-      if (retimed->finalTime() < guess->finalTime()) {
-        out.guess_retimed_s = guess->finalTime() - retimed->finalTime();
-        guess = std::move(retimed);
-      }
-    }
-  }
+  const ocp::TranscriptionGuess start_guess = startingGuess(before, candidate_guess, out);
 
   // 2. Choose the method.
   out.method = chooseRefineMethod(options_, before.length_m, before.min_clearance_m,
@@ -432,7 +403,7 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
     out.parametric.reset();
   }
 
-  transcribe(*guess, before, clearance_, solver_deadline, out);
+  transcribe(start_guess, before, clearance_, solver_deadline, out);
   // Interior-point iterates may pass through a small obstacle: once the class is lost, solve
   // again from the candidate inside a corridor around it, which the clearance constraint keeps.
   if (out.refined_figures && !out.homotopy_kept && options_.corridor_radius_m > 0.0 &&
@@ -443,6 +414,42 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
     transcribe(candidate_guess, before, corridor, solver_deadline, out);
   }
   return finishRefinement(before, out, started);
+}
+
+ocp::TranscriptionGuess CandidateRefiner::startingGuess(const TrajectoryFigures& before,
+                                                        const ocp::TranscriptionGuess& candidate,
+                                                        RefinementResult& out) const {
+  ocp::TranscriptionGuess guess = candidate;
+  // A wiggly candidate (a PRM's first solution, with loops) starts the optimiser from its
+  // shortcut path instead, when that keeps the class: loops and detours cost iterations and
+  // can trap it.
+  if (options_.shortcut_clearance_m > 0.0) {
+    const std::vector<Eigen::Vector2d> shortcut =
+        shortcutPath(polyline(out.candidate), options_.shortcut_clearance_m);
+    const double length = polylineLength(shortcut);
+    if (length < options_.shortcut_gain * before.length_m && classOf(shortcut) == before.homotopy) {
+      if (Expected<ocp::TranscriptionGuess> shorter =
+              ocp::guessFromPath(shortcut, *bvp_, options_.guess_spacing_m)) {
+        guess = std::move(*shorter);
+        out.guess_shortcut_m = before.length_m - length;
+      }
+    }
+  }
+  // A slow candidate whose shortcut is not used (a PRM's first solution on a forest: its path
+  // near the shortest, its speed profile slow) starts from its own path re-timed by the
+  // forward-backward speed pass when that is faster: an evenly sampled, consistent guess (the
+  // PRM's own samples change speed at every milestone). Forest PRM first solutions: 54-142 ->
+  // 19-68 coarse iterations, the same optima (bench refine).
+  if (out.guess_shortcut_m == 0.0 && !(guess.finalTime() <= nearOptimalTime(before.length_m))) {
+    if (Expected<ocp::TranscriptionGuess> retimed =
+            ocp::guessFromPath(polyline(out.candidate), *bvp_, options_.guess_spacing_m)) {
+      if (retimed->finalTime() < guess.finalTime()) {
+        out.guess_retimed_s = guess.finalTime() - retimed->finalTime();
+        guess = std::move(*retimed);
+      }
+    }
+  }
+  return guess;
 }
 
 RefinementResult& CandidateRefiner::finishRefinement(

@@ -162,6 +162,12 @@ class CandidateRefiner {
   // Applies the worse-than-candidate rule and the total time.
   RefinementResult& finishRefinement(const TrajectoryFigures& before, RefinementResult& out,
                                      std::chrono::steady_clock::time_point started) const;
+  // The guess the optimiser starts from: the candidate's (`candidate`), its shortcut path's
+  // (a wiggly candidate) or its path re-timed by the speed pass (a slow one); sets
+  // out.guess_shortcut_m / out.guess_retimed_s when used.
+  ocp::TranscriptionGuess startingGuess(const TrajectoryFigures& before,
+                                        const ocp::TranscriptionGuess& candidate,
+                                        RefinementResult& out) const;
   // The duration under which a guess along a path of `length` [m] counts as near optimal:
   // warm_start_time_ratio x the bang-bang time along it [s].
   double nearOptimalTime(double length) const;
