@@ -173,6 +173,14 @@ nlohmann::json seededReportJson(const refine::SeededSolution& solution,
       {"attempts", attemptsJson(solution.attempts)},
       {"history", iterationHistoryJson(solution.history, solution.parametric.has_value())},
   };
+  if (solution.reachability) {
+    json["reachability"] = {{"reachable", solution.reachability->reachable},
+                            {"decided", solution.reachability->decided},
+                            {"states_visited", solution.reachability->states_visited},
+                            {"cells_reached", solution.reachability->cells_reached},
+                            {"attitude_samples", solution.reachability->attitude_samples},
+                            {"time_ms", solution.reachability->time_ms}};
+  }
   if (solution.parametric) {
     const ocp::SolveResult& s = solution.parametric->solver;
     json["solver_time_ms"] = s.solve_time_ms;

@@ -167,6 +167,10 @@ nlohmann::json robustRow(const RobustSetData& data, int index, const std::string
   row["method_used"] = s.method;
   row["initial_guess"] = s.initial_guess;
   row["attempts"] = attemptsJson(s.attempts);
+  // Proved unreachable before any seed (models::checkGoalReachability): not a reachable
+  // problem, so outside the success rates (counted apart).
+  row["unreachable"] = s.reachability.has_value() && !s.reachability->reachable;
+  if (s.reachability) row["reachability_ms"] = s.reachability->time_ms;
   row["iterations"] = s.iterations;
   row["time_ms"] = s.total_time_ms;
   row["cost"] = s.verified.ok ? jsonNumber(s.verified.cost) : nlohmann::json(nullptr);
@@ -246,7 +250,7 @@ nlohmann::json summarizeRobustness(const nlohmann::json& rows) {
     if (!inserted) it->second = std::min(it->second, cost);
   }
   struct Tally {
-    int runs = 0, converged = 0, check_failures = 0;
+    int runs = 0, converged = 0, check_failures = 0, unreachable = 0;
     std::vector<double> over_bound, over_best, time_ms;
   };
   std::map<std::string, Tally> by_method;
@@ -254,6 +258,10 @@ nlohmann::json summarizeRobustness(const nlohmann::json& rows) {
   for (const nlohmann::json& row : rows) {
     if (row.value("family", "") != "robustness" || row.value("status", "") == "skipped") continue;
     Tally& t = by_method[row.value("solver", "")];
+    if (row.value("unreachable", false)) {  // proved before any seed: not a reachable problem
+      ++t.unreachable;
+      continue;
+    }
     ++t.runs;
     std::pair<int, int>& set = by_set[row.value("set", "")][row.value("solver", "")];
     ++set.first;
@@ -275,6 +283,7 @@ nlohmann::json summarizeRobustness(const nlohmann::json& rows) {
         {"success_rate", t.runs > 0 ? nlohmann::json(static_cast<double>(t.converged) / t.runs)
                                     : nlohmann::json(nullptr)},
         {"converged_but_check_failed", t.check_failures},
+        {"unreachable", t.unreachable},
         {"cost_over_dubins_bound", distributionJson(t.over_bound)},
         {"cost_over_best_of_any_method", distributionJson(t.over_best)},
         {"time_ms", distributionJson(t.time_ms)}};
@@ -296,8 +305,11 @@ std::string robustnessText(const nlohmann::json& summary) {
     if (!summary["methods"].contains(method)) continue;
     const nlohmann::json& m = summary["methods"][method];
     text << method << std::string(13 - std::min<std::size_t>(std::string(method).size(), 12), ' ')
-         << m["converged"] << "/" << m["runs"] << "   "
-         << figureText(m["cost_over_dubins_bound"], "median") << ", "
+         << m["converged"] << "/" << m["runs"]
+         << (m.value("unreachable", 0) > 0
+                 ? " (+" + std::to_string(m.value("unreachable", 0)) + " unreachable)"
+                 : std::string())
+         << "   " << figureText(m["cost_over_dubins_bound"], "median") << ", "
          << figureText(m["cost_over_dubins_bound"], "max") << ", "
          << figureText(m["cost_over_dubins_bound"], "min") << "   "
          << figureText(m["cost_over_best_of_any_method"], "median") << ", "

@@ -222,6 +222,25 @@ SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
   return out;
 }
 
+// solveSeeded's first step: whether the goal can be reached at all (with initial_guess kAuto, a
+// map, and the check enabled; else std::nullopt), within what is left of the time limit.
+std::optional<models::GoalReachability> checkReachability(
+    const models::TerrainFollowingModel& vehicle, const ocp::BoundaryValueProblem& problem,
+    const terrain::ElevationMap* map, const SeededSolveOptions& options,
+    const ocp::Deadline& deadline) {
+  if (options.initial_guess != InitialGuessKind::kAuto || map == nullptr || !options.reachability ||
+      ocp::startMeetsGoal(problem, options.parametric.criteria)) {
+    return std::nullopt;
+  }
+  models::GoalReachabilityOptions check = *options.reachability;
+  if (const std::optional<double> left = deadline.left()) {
+    check.time_limit_s = std::min(check.time_limit_s.value_or(*left), *left);
+  }
+  return models::checkGoalReachability(
+      vehicle, *map, problem.limits, {problem.start.x, problem.start.y, problem.start.heading},
+      {problem.goal.x, problem.goal.y, problem.goal.heading}, check);
+}
+
 }  // namespace
 
 SeededSolution seededSolutionOf(ocp::VerifiedTranscription result, std::string method,
@@ -287,6 +306,17 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
     record(attempt(vehicle, problem, map, options, &bridged, deadline.left()), t1);
   };
   const bool transcription = isTranscription(options.method);
+  // A goal no trajectory can reach (boxed in by slopes, lethal or no-data cells): infeasible at
+  // once, with the reason, instead of after every seed has spent its iterations.
+  std::optional<models::GoalReachability> reachability =
+      checkReachability(vehicle, problem, map, options, deadline);
+  if (reachability && !reachability->reachable) {
+    best.status = ocp::SolveStatus::kInfeasible;
+    best.reason = reachability->reason;
+    best.reachability = std::move(reachability);
+    best.total_time_ms = 1e3 * secondsSince(started);
+    return best;
+  }
   if (options.initial_guess == InitialGuessKind::kFlat ||
       ocp::startMeetsGoal(problem, options.parametric.criteria)) {
     if (transcription) {
@@ -342,6 +372,7 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
           "was allowed";
     }
   }
+  best.reachability = std::move(reachability);
   best.total_time_ms = 1e3 * secondsSince(started);
   return best;
 }

@@ -93,9 +93,11 @@ void finalise(MotionPrimitive& p) {
 // Lattice offsets to try for a turn by dtheta from `heading`, best first, at most `count`:
 // chords at least as long as the reference turn and at most 3 times, whose direction deviates
 // from the turn's mean heading by an angle an S-bend of that length can absorb (lateral offset
-// sigma_s L^3 / 32 for four clothoids of length L / 4, halved for safety), shortest first.
+// sigma_s L^3 / 32 for four clothoids of length L / 4, or kappa_max L^2 / 4 for two arcs where
+// that is less, halved for safety), shortest first.
 std::vector<Eigen::Vector2i> candidateOffsets(double heading, double dtheta, double reference,
-                                              double sigma_s, double resolution, int count) {
+                                              double sigma_s, double kappa_max, double resolution,
+                                              int count) {
   const double half = 0.5 * dtheta;
   const double chord_min =
       std::abs(half) > 1e-12 ? reference * std::sin(std::abs(half)) / std::abs(half) : reference;
@@ -112,7 +114,10 @@ std::vector<Eigen::Vector2i> candidateOffsets(double heading, double dtheta, dou
           std::abs(std::remainder(std::atan2(chord.y(), chord.x()) - direction, kTwoPi));
       if (deviation > 0.25 * kTwoPi) continue;
       const double s_bend = length - (reference - chord_min);  // length left after the turn
-      const double tolerance = 0.5 * sigma_s * s_bend * s_bend / 32.0;
+      // Four clothoids reach sigma_s L^3 / 32 sideways; with |kappa| <= kappa_max (what binds
+      // when sigma_s is large) two arcs reach about kappa_max L^2 / 4.
+      const double tolerance =
+          std::min(0.5 * sigma_s * s_bend * s_bend / 32.0, kappa_max * s_bend / 4.0);
       if (deviation > tolerance + 1e-12) continue;
       scored.emplace_back(length + 0.01 * deviation, Eigen::Vector2i(dx, dy));
     }
@@ -152,10 +157,13 @@ MotionPrimitive rotateQuarterTurns(const MotionPrimitive& p, int quarter_turns,
 
 }  // namespace
 
-std::optional<MotionPrimitive> solvePrimitive(double start_heading, const Eigen::Vector2d& end,
-                                              double end_heading, double speed,
-                                              const models::VehicleLimits& limits,
-                                              double sample_spacing, int max_iterations) {
+namespace {
+
+// solvePrimitive() with the limits as given.
+std::optional<MotionPrimitive> solveOnce(double start_heading, const Eigen::Vector2d& end,
+                                         double end_heading, double speed,
+                                         const models::VehicleLimits& limits, double sample_spacing,
+                                         int max_iterations) {
   static thread_local FlatWorld world;
   if (!(speed > 0.0) || !std::isfinite(speed)) return std::nullopt;
   // A constant-speed primitive's path depends on the speed only through the bounds per arc
@@ -205,6 +213,26 @@ std::optional<MotionPrimitive> solvePrimitive(double start_heading, const Eigen:
   return p;
 }
 
+}  // namespace
+
+std::optional<MotionPrimitive> solvePrimitive(double start_heading, const Eigen::Vector2d& end,
+                                              double end_heading, double speed,
+                                              const models::VehicleLimits& limits,
+                                              double sample_spacing, int max_iterations) {
+  // The solver holds kappa_max at its constraint points; between them the curvature can pass
+  // it by a few 1e-4 where it turns sharply (a large sigma_max: 20 1/(m s) passed it by 4.5e-4,
+  // which the primitive set's check refuses). Solved again with kappa_max lowered by what
+  // passed, so a primitive never breaks the limit it is checked against.
+  models::VehicleLimits tightened = limits;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    std::optional<MotionPrimitive> p = solveOnce(start_heading, end, end_heading, speed, tightened,
+                                                 sample_spacing, max_iterations);
+    if (!p || p->max_abs_curvature <= limits.kappa_max * (1.0 + 1e-6)) return p;
+    tightened.kappa_max *= (limits.kappa_max / p->max_abs_curvature) * (1.0 - 1e-3);
+  }
+  return std::nullopt;
+}
+
 PrimitiveGenerationResult generatePrimitives(const LatticeSpec& lattice,
                                              const models::VehicleLimits& limits,
                                              const PrimitiveGenerationOptions& options) {
@@ -251,33 +279,42 @@ PrimitiveGenerationResult generatePrimitives(const LatticeSpec& lattice,
     for (const auto& [turn, reference] : requests) {
       const int end_index = lattice.wrapHeading(k + turn);
       const double dtheta = kTwoPi * turn / lattice.heading_count;
+      // The offsets near the reference length first; when every one of them fails (a short
+      // reference: a large sigma_max, where kappa_max binds), the reference 25 % longer, up to
+      // `attempts` times, each offset solved once.
       bool found = false;
-      for (const Eigen::Vector2i& offset : candidateOffsets(heading, dtheta, reference, sigma_s,
-                                                            lattice.resolution, options.attempts)) {
-        if (seen.count({end_index, offset.x(), offset.y()})) {
-          found = true;  // an earlier request already produced this primitive
+      std::set<std::pair<int, int>> tried;
+      double length = reference;
+      for (int growth = 0; growth < options.attempts && !found; ++growth, length *= 1.25) {
+        for (const Eigen::Vector2i& offset :
+             candidateOffsets(heading, dtheta, length, sigma_s, kappa_max, lattice.resolution,
+                              options.attempts)) {
+          if (seen.count({end_index, offset.x(), offset.y()})) {
+            found = true;  // an earlier request already produced this primitive
+            break;
+          }
+          if (!tried.insert({offset.x(), offset.y()}).second) continue;
+          ++set.generation.solves;
+          std::optional<MotionPrimitive> p = solvePrimitive(
+              heading, offset.cast<double>() * lattice.resolution, lattice.headingAngle(end_index),
+              speed, limits, options.sample_spacing, options.max_iterations);
+          if (!p) {
+            ++set.generation.failures;
+            continue;
+          }
+          p->start_heading = k;
+          p->end_heading = end_index;
+          p->offset = offset;
+          seen.insert({end_index, offset.x(), offset.y()});
+          set.by_heading[k].push_back(std::move(*p));
+          found = true;
           break;
         }
-        ++set.generation.solves;
-        std::optional<MotionPrimitive> p = solvePrimitive(
-            heading, offset.cast<double>() * lattice.resolution, lattice.headingAngle(end_index),
-            speed, limits, options.sample_spacing, options.max_iterations);
-        if (!p) {
-          ++set.generation.failures;
-          continue;
-        }
-        p->start_heading = k;
-        p->end_heading = end_index;
-        p->offset = offset;
-        seen.insert({end_index, offset.x(), offset.y()});
-        set.by_heading[k].push_back(std::move(*p));
-        found = true;
-        break;
       }
       if (!found) {
         std::ostringstream text;
         text << "heading " << k << ", turn " << turn << ": no converged primitive in "
-             << options.attempts << " attempts";
+             << tried.size() << " offsets (" << options.attempts << " reference lengths)";
         result.failures.push_back(text.str());
       }
     }

@@ -136,7 +136,8 @@ TEST_F(SeededSolverTest, UTurnAtTheSamePositionIsSolved) {
   EXPECT_GT(s.verified.length, M_PI);  // at least half a circle of radius 1 m
 }
 
-// A goal boxed in by lethal cells: `infeasible` with the reason, within the time limit.
+// A goal boxed in by lethal cells: `infeasible` with the reason, before any seed is tried (the
+// reachability check); without the check, after the seeds, within the time limit.
 TEST_F(SeededSolverTest, BoxedInGoalIsInfeasibleWithItsReason) {
   terrain::GridLayer& lethal = map_.addLayer(terrain::layer_names::kLethal);
   for (int row = 60; row <= 80; ++row) {
@@ -151,10 +152,33 @@ TEST_F(SeededSolverTest, BoxedInGoalIsInfeasibleWithItsReason) {
   problem.limits = sets::roverLimits();
   SeededSolveOptions options;
   options.time_limit_s = 20.0;
+  const SeededSolution checked = solveSeeded(vehicle_, problem, &map_, options);
+  EXPECT_EQ(checked.status, ocp::SolveStatus::kInfeasible) << checked.reason;
+  EXPECT_NE(checked.reason.find("cannot be reached"), std::string::npos) << checked.reason;
+  EXPECT_NE(checked.reason.find("lethal cells"), std::string::npos) << checked.reason;
+  EXPECT_TRUE(checked.attempts.empty());
+  ASSERT_TRUE(checked.reachability.has_value());
+  EXPECT_FALSE(checked.reachability->reachable);
+
+  options.reachability.reset();
   const SeededSolution s = solveSeeded(vehicle_, problem, &map_, options);
   EXPECT_EQ(s.status, ocp::SolveStatus::kInfeasible) << s.reason;
   EXPECT_NE(s.reason.find("impassable"), std::string::npos) << s.reason;
   EXPECT_LT(s.total_time_ms, 21000.0);
+  EXPECT_FALSE(s.reachability.has_value());
+}
+
+// An open problem passes the check (reachable, decided) and is solved as before.
+TEST_F(SeededSolverTest, AReachableGoalPassesTheCheckAndIsSolved) {
+  ocp::BoundaryValueProblem problem;
+  problem.start = {5.0, 5.0, 0.0, 0.0, 0.0};
+  problem.goal = {12.0, 9.0, 1.0, 0.0, 0.0};
+  problem.limits = sets::roverLimits();
+  const SeededSolution s = solve(problem, CoreMethod::kAuto);
+  ASSERT_TRUE(s.reachability.has_value());
+  EXPECT_TRUE(s.reachability->reachable);
+  EXPECT_TRUE(s.reachability->decided);
+  EXPECT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
 }
 
 }  // namespace

@@ -49,6 +49,25 @@ TEST(MotionPrimitives, QuarterTurnSymmetry) {
   }
 }
 
+// A vehicle whose curvature may change fast (sigma_max 20 1/(m s), kappa_max 1 1/m): kappa_max
+// binds, not sigma_max. Every heading and turn gets a primitive that holds kappa_max. (Before:
+// offsets chosen by sigma_max alone asked for S-bends kappa_max cannot make, and the solver's
+// curvature passed kappa_max by 4.5e-4 between its constraint points: no lattice, exit 2.)
+TEST(MotionPrimitives, AFastSteeringVehicleGetsAFullSetWithinKappaMax) {
+  models::VehicleLimits limits;
+  limits.kappa_max = 1.0;
+  limits.sigma_max = 20.0;
+  const PrimitiveGenerationResult result = generatePrimitives(LatticeSpec{}, limits);
+  for (const std::string& f : result.failures) ADD_FAILURE() << f;
+  EXPECT_EQ(result.set.checkAgainst(LatticeSpec{}, &limits), std::nullopt);
+  for (const auto& list : result.set.by_heading) {
+    EXPECT_GE(list.size(), 5u);
+    for (const MotionPrimitive& p : list) {
+      EXPECT_LE(p.max_abs_curvature, limits.kappa_max * (1 + 1e-6));
+    }
+  }
+}
+
 TEST(MotionPrimitives, AnyHeadingCountIsAllowed) {
   LatticeSpec lattice;
   lattice.heading_count = 6;  // not a multiple of 4: every heading solved

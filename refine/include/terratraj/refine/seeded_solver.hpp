@@ -15,13 +15,16 @@
 // parametric ipopt from the same word and collocation again from ipopt's trajectory (the ipopt
 // step is listed among the attempts, never the result). Every attempt is verified (the verdict);
 // the best converged cost wins; a second word is tried when the first fails or is within
-// `retry_length_ratio` of it.
+// `retry_length_ratio` of it. Before any of this, a goal that cannot be reached at all (boxed
+// in by slopes beyond the pitch and roll limits, lethal or no-data cells) is `infeasible` with
+// the reason (models::checkGoalReachability).
 
 #include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "terratraj/models/goal_reachability.hpp"
 #include "terratraj/models/terrain_following_model.hpp"
 #include "terratraj/models/trajectory_verdict.hpp"
 #include "terratraj/ocp/boundary_value_problem.hpp"
@@ -77,7 +80,11 @@ struct SeededSolveOptions {
   double seed_spacing_m = 0.1;  ///< samples of a seed path [m], > 0
   /// Search seed: the PRM's budget [s] when every word crosses an impassable cell (0: none).
   double search_time_s = 1.0;
-  std::uint64_t search_seed = 1;            ///< the PRM's random seed
+  std::uint64_t search_seed = 1;  ///< the PRM's random seed
+  /// With initial_guess kAuto and a map, first checked: whether the goal can be reached at all
+  /// (models::checkGoalReachability); when not, kInfeasible with its reason before any seed is
+  /// tried. std::nullopt: not checked.
+  std::optional<models::GoalReachabilityOptions> reachability = models::GoalReachabilityOptions{};
   std::optional<double> time_limit_s;       ///< wall clock of the whole solve [s]; absent: none
   const std::atomic<bool>* stop = nullptr;  ///< set from outside (SIGINT): no further attempt
 };
@@ -108,6 +115,7 @@ struct SeededSolution {
   std::vector<ocp::IterationRecord> history;                ///< the result's iterations
   int iterations = 0;                                       ///< of every attempt
   std::vector<SeedAttempt> attempts;                        ///< every attempt, in order
+  std::optional<models::GoalReachability> reachability;     ///< the check, when made
   double total_time_ms = 0.0;
 };
 

@@ -8,7 +8,8 @@
 // whose chord is at least that turn's and whose misalignment an S-bend of the remaining length
 // can absorb, shortest first; the boundary-value problem (Ipopt, limits enforced) from
 // (0, 0, heading k) to a candidate position and heading
-// is solved. A failed solve is retried with a 25 % longer reference length. Straight moves
+// is solved. When every candidate fails, the reference length grows by 25 % (up to `attempts`
+// times) and the new candidates are tried. Straight moves
 // (d = 0) come in the lengths listed in straight_lengths. When heading_count is a multiple of 4,
 // the primitives of headings k + heading_count / 4 are those of k rotated by 90 degrees (exact
 // on the grid), so only a quarter of the headings are solved.
@@ -31,8 +32,10 @@ struct PrimitiveGenerationOptions {
   /// Constant speed of the primitives [m/s]; the primitives respect sigma_max and omega_max at
   /// this speed (faster driving is capped by the planner). <= 0: the vehicle's v_max.
   double speed = 0.0;
-  double length_margin = 1.15;   ///< reference turn length over the clothoid minimum, >= 1
-  int attempts = 4;              ///< tries per primitive (candidate offsets, shortest first), >= 1
+  double length_margin = 1.15;  ///< reference turn length over the clothoid minimum, >= 1
+  /// Candidate offsets per reference length (shortest first), and reference lengths (each 25 %
+  /// longer, when every offset of the previous one failed), >= 1.
+  int attempts = 4;
   double sample_spacing = 0.05;  ///< stored sample spacing [m], > 0
   int max_iterations = 100;      ///< of each boundary-value solve
   /// Called after each solved heading with (headings done, headings to solve); may be empty.

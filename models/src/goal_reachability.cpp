@@ -1,0 +1,248 @@
+#include "terratraj/models/goal_reachability.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <queue>
+#include <sstream>
+#include <vector>
+
+namespace terratraj::models {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// What a cell is, once tested.
+enum class CellKind : std::uint8_t {
+  kUnknown,
+  kPassable,
+  kSteep,      // no sample rests within the pitch and roll limits
+  kNoContact,  // no sample has an attitude (off the terrain, no contact)
+  kLethal,
+  kNoData,
+};
+
+// The search's state space: (cell, heading sector), each tested on first need.
+class StateTester {
+ public:
+  StateTester(const TerrainFollowingModel& vehicle, const terrain::ElevationMap& map,
+              const VehicleLimits& limits, const GoalReachabilityOptions& options)
+      : vehicle_(vehicle),
+        map_(map),
+        pitch_max_(limits.pitch_max * (1.0 + options.limit_tolerance)),
+        roll_max_(limits.roll_max * (1.0 + options.limit_tolerance)),
+        sectors_(std::max(4, options.sectors)),
+        kinds_(map.geometry().cellCount() * static_cast<std::size_t>(sectors_),
+               CellKind::kUnknown) {}
+
+  int sectors() const { return sectors_; }
+  double width() const { return 2.0 * kPi / sectors_; }
+  double middle(int sector) const { return width() * sector; }
+  std::size_t index(terrain::CellIndex c, int sector) const {
+    return map_.geometry().linearIndex(c) * static_cast<std::size_t>(sectors_) +
+           static_cast<std::size_t>(sector);
+  }
+  CellKind kind(terrain::CellIndex c, int sector) {
+    CellKind& k = kinds_[index(c, sector)];
+    if (k == CellKind::kUnknown) k = test(c, sector);
+    return k;
+  }
+  void markOpen(terrain::CellIndex c, int sector) {
+    kinds_[index(c, sector)] = CellKind::kPassable;
+  }
+  std::size_t samples() const { return samples_; }
+
+ private:
+  CellKind test(terrain::CellIndex c, int sector) {
+    if (map_.isNoData(c)) return CellKind::kNoData;
+    if (map_.isLethal(c)) return CellKind::kLethal;
+    const terrain::GridGeometry& g = map_.geometry();
+    const Eigen::Vector2d centre = g.cellCenter(c);
+    const double h = 0.5 * g.cell;
+    const std::array<Eigen::Vector2d, 5> points = {
+        centre, centre + Eigen::Vector2d(-h, -h), centre + Eigen::Vector2d(h, -h),
+        centre + Eigen::Vector2d(-h, h), centre + Eigen::Vector2d(h, h)};
+    bool any_attitude = false;
+    for (const Eigen::Vector2d& p : points) {
+      for (const double offset : {0.0, -0.5, 0.5, -0.25, 0.25}) {
+        const double heading = middle(sector) + offset * width();
+        AttitudeResult result;
+        workspace_.has_warm_start = false;
+        ++samples_;
+        if (vehicle_.compute({p.x(), p.y(), heading}, workspace_, result) != AttitudeStatus::kOk) {
+          continue;
+        }
+        any_attitude = true;
+        if (std::abs(result.attitude.pitch) <= pitch_max_ &&
+            std::abs(result.attitude.roll) <= roll_max_) {
+          return CellKind::kPassable;
+        }
+      }
+    }
+    return any_attitude ? CellKind::kSteep : CellKind::kNoContact;
+  }
+
+  const TerrainFollowingModel& vehicle_;
+  const terrain::ElevationMap& map_;
+  double pitch_max_, roll_max_;
+  int sectors_;
+  std::vector<CellKind> kinds_;
+  AttitudeWorkspace workspace_;
+  std::size_t samples_ = 0;
+};
+
+// The sectors whose closed range holds `heading` (within 0.01 rad): one, or two at an edge.
+std::vector<int> sectorsHolding(double heading, const StateTester& states) {
+  std::vector<int> out;
+  for (int k = 0; k < states.sectors(); ++k) {
+    if (std::abs(std::remainder(heading - states.middle(k), 2.0 * kPi)) <=
+        0.5 * states.width() + 0.01) {
+      out.push_back(k);
+    }
+  }
+  return out;
+}
+
+// Whether a heading of `sector` can cross from a cell into its neighbour (dr, dc): a positive
+// component along dc (x) when dc != 0 and along dr (y) when dr != 0, for some heading of the
+// closed sector.
+bool crosses(const StateTester& states, int sector, int dr, int dc) {
+  const double direction = std::atan2(static_cast<double>(dr), static_cast<double>(dc));
+  const double half_cone = (dr != 0 && dc != 0) ? 0.25 * kPi : 0.5 * kPi;
+  return std::abs(std::remainder(states.middle(sector) - direction, 2.0 * kPi)) <
+         half_cone + 0.5 * states.width();
+}
+
+std::string degrees(double radians) {
+  std::ostringstream text;
+  text.precision(3);
+  text << radians * 180.0 / kPi;
+  return text.str();
+}
+
+std::string percent(double fraction) {
+  std::ostringstream text;
+  text.precision(3);
+  text << fraction * 100.0 << " %";
+  return text.str();
+}
+
+}  // namespace
+
+GoalReachability checkGoalReachability(const TerrainFollowingModel& vehicle,
+                                       const terrain::ElevationMap& map,
+                                       const VehicleLimits& limits, const PlanarPose& start,
+                                       const PlanarPose& goal,
+                                       const GoalReachabilityOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  GoalReachability out;
+  const terrain::GridGeometry& g = map.geometry();
+  const std::optional<terrain::CellIndex> from = g.cellAt({start.x, start.y});
+  const std::optional<terrain::CellIndex> to = g.cellAt({goal.x, goal.y});
+  if (!from || !to) return out;
+  StateTester states(vehicle, map, limits, options);
+  const auto finish = [&]() -> GoalReachability& {
+    out.attitude_samples = states.samples();
+    out.time_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
+            .count();
+    return out;
+  };
+  const std::vector<int> goal_sectors = sectorsHolding(goal.heading, states);
+  for (int k : goal_sectors) states.markOpen(*to, k);
+  // Greedy best-first towards the goal: over open terrain it walks nearly straight there.
+  struct Entry {
+    double priority;
+    terrain::CellIndex cell;
+    int sector;
+  };
+  const auto later = [](const Entry& a, const Entry& b) { return a.priority > b.priority; };
+  std::priority_queue<Entry, std::vector<Entry>, decltype(later)> queue(later);
+  std::vector<bool> queued(g.cellCount() * static_cast<std::size_t>(states.sectors()), false);
+  std::vector<bool> reached(g.cellCount(), false);
+  const auto distance = [&](terrain::CellIndex c) {
+    return std::hypot(static_cast<double>(c.row - to->row), static_cast<double>(c.col - to->col));
+  };
+  const auto push = [&](terrain::CellIndex c, int k) {
+    queued[states.index(c, k)] = true;
+    queue.push({distance(c), c, k});
+  };
+  for (int k : sectorsHolding(start.heading, states)) {
+    states.markOpen(*from, k);
+    push(*from, k);
+  }
+  std::array<std::size_t, 6> borders{};  // states refused, by CellKind
+  std::size_t off_map = 0;
+  std::size_t& cells_reached = out.cells_reached;
+  const int n = states.sectors();
+  while (!queue.empty()) {
+    const Entry e = queue.top();
+    queue.pop();
+    ++out.states_visited;
+    if (!reached[g.linearIndex(e.cell)]) {
+      reached[g.linearIndex(e.cell)] = true;
+      ++cells_reached;
+    }
+    if (e.cell == *to &&
+        std::find(goal_sectors.begin(), goal_sectors.end(), e.sector) != goal_sectors.end()) {
+      return finish();
+    }
+    if (options.time_limit_s && out.states_visited % 256 == 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >
+            *options.time_limit_s) {
+      out.decided = false;
+      return finish();
+    }
+    const auto consider = [&](terrain::CellIndex c, int k) {
+      if (queued[states.index(c, k)]) return;
+      const CellKind kind = states.kind(c, k);
+      if (kind != CellKind::kPassable) {
+        ++borders[static_cast<std::size_t>(kind)];
+        return;
+      }
+      push(c, k);
+    };
+    // Turn into the next sector inside the cell.
+    consider(e.cell, (e.sector + 1) % n);
+    consider(e.cell, (e.sector + n - 1) % n);
+    // Drive across an edge or a corner the sector's headings cross.
+    for (int dr = -1; dr <= 1; ++dr) {
+      for (int dc = -1; dc <= 1; ++dc) {
+        if ((dr == 0 && dc == 0) || !crosses(states, e.sector, dr, dc)) continue;
+        const terrain::CellIndex next{e.cell.row + dr, e.cell.col + dc};
+        if (!g.isValid(next)) {
+          ++off_map;
+          continue;
+        }
+        consider(next, e.sector);
+      }
+    }
+  }
+  out.reachable = false;
+  std::ostringstream why;
+  why.precision(3);
+  why << "the goal cannot be reached from the start: driving forwards, the vehicle can reach "
+      << cells_reached << " cells (" << cells_reached * g.cell * g.cell
+      << " m^2) from the start, bounded by";
+  const char* sep = " ";
+  const auto border = [&](CellKind kind, const std::string& text) {
+    if (borders[static_cast<std::size_t>(kind)] == 0) return;
+    why << sep << text;
+    sep = ", ";
+  };
+  border(CellKind::kSteep, "slopes where no heading the vehicle can turn to keeps pitch within " +
+                               degrees(limits.pitch_max) + " deg and roll within " +
+                               degrees(limits.roll_max) + " deg (" +
+                               percent(options.limit_tolerance) + " slack)");
+  border(CellKind::kNoContact, "cells where the vehicle has no attitude (no contact)");
+  border(CellKind::kLethal, "lethal cells");
+  border(CellKind::kNoData, "no-data cells");
+  if (off_map > 0) why << sep << "the map's edge";
+  out.reason = why.str();
+  return finish();
+}
+
+}  // namespace terratraj::models
