@@ -54,6 +54,17 @@ class StateTester {
     kinds_[index(c, sector)] = CellKind::kPassable;
   }
   std::size_t samples() const { return samples_; }
+  /// The cell's kind for any heading: passable when one sector is, else the first sector's.
+  CellKind anySector(terrain::CellIndex c) {
+    const CellKind first = kind(c, 0);
+    if (first == CellKind::kPassable || first == CellKind::kLethal || first == CellKind::kNoData) {
+      return first;
+    }
+    for (int k = 1; k < sectors_; ++k) {
+      if (kind(c, k) == CellKind::kPassable) return CellKind::kPassable;
+    }
+    return first;
+  }
 
  private:
   CellKind test(terrain::CellIndex c, int sector) {
@@ -116,6 +127,124 @@ bool crosses(const StateTester& states, int sector, int dr, int dc) {
          half_cone + 0.5 * states.width();
 }
 
+// One best-first search from the start towards the goal, greedy on the distance to the goal
+// (over open terrain it walks nearly straight there). By sector: the relaxation of the file
+// comment. By cell (`by_cell`): a cell is open when any sector of it is, every neighbour can be
+// entered and headings are ignored: weaker (it proves less), but a region of N cells costs N
+// states instead of up to 16 N, so it settles a goal boxed in by lethal cells on a whole map
+// first.
+class ReachabilitySearch {
+ public:
+  ReachabilitySearch(StateTester& states, const terrain::GridGeometry& g, const PlanarPose& start,
+                     const PlanarPose& goal, terrain::CellIndex from, terrain::CellIndex to)
+      : states_(states),
+        g_(g),
+        from_(from),
+        to_(to),
+        start_sectors_(sectorsHolding(start.heading, states)),
+        goal_sectors_(sectorsHolding(goal.heading, states)) {
+    for (int k : start_sectors_) states_.markOpen(from_, k);
+    for (int k : goal_sectors_) states_.markOpen(to_, k);
+  }
+
+  enum class Outcome { kReached, kExhausted, kOutOfTime };
+
+  Outcome run(bool by_cell, const std::optional<double>& time_limit_s,
+              std::chrono::steady_clock::time_point started, GoalReachability& out) {
+    by_cell_ = by_cell;
+    const int n = by_cell ? 1 : states_.sectors();
+    queued_.assign(g_.cellCount() * static_cast<std::size_t>(n), false);
+    std::vector<bool> reached(g_.cellCount(), false);
+    queue_ = {};
+    borders_.fill(0);
+    off_map_ = 0;
+    out.cells_reached = 0;
+    if (by_cell) {
+      push(from_, 0);
+    } else {
+      for (int k : start_sectors_) push(from_, k);
+    }
+    while (!queue_.empty()) {
+      const Entry e = queue_.top();
+      queue_.pop();
+      ++out.states_visited;
+      if (!reached[g_.linearIndex(e.cell)]) {
+        reached[g_.linearIndex(e.cell)] = true;
+        ++out.cells_reached;
+      }
+      if (e.cell == to_ && (by_cell || std::find(goal_sectors_.begin(), goal_sectors_.end(),
+                                                 e.sector) != goal_sectors_.end())) {
+        return Outcome::kReached;
+      }
+      if (time_limit_s && out.states_visited % 256 == 0 &&
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >
+              *time_limit_s) {
+        return Outcome::kOutOfTime;
+      }
+      if (!by_cell) {  // turn into the next sector inside the cell
+        consider(e.cell, (e.sector + 1) % n);
+        consider(e.cell, (e.sector + n - 1) % n);
+      }
+      // Drive across an edge or a corner (by sector: one the sector's headings cross).
+      for (int dr = -1; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+          if ((dr == 0 && dc == 0) || (!by_cell && !crosses(states_, e.sector, dr, dc))) continue;
+          const terrain::CellIndex next{e.cell.row + dr, e.cell.col + dc};
+          if (!g_.isValid(next)) {
+            ++off_map_;
+            continue;
+          }
+          consider(next, e.sector);
+        }
+      }
+    }
+    return Outcome::kExhausted;
+  }
+
+  /// What refused the last run's states, by CellKind; and moves off the map.
+  const std::array<std::size_t, 6>& borders() const { return borders_; }
+  std::size_t offMap() const { return off_map_; }
+
+ private:
+  struct Entry {
+    double priority;
+    terrain::CellIndex cell;
+    int sector;
+  };
+  struct Later {
+    bool operator()(const Entry& a, const Entry& b) const { return a.priority > b.priority; }
+  };
+
+  std::size_t slot(terrain::CellIndex c, int k) const {
+    return by_cell_ ? g_.linearIndex(c) : states_.index(c, k);
+  }
+  void push(terrain::CellIndex c, int k) {
+    queued_[slot(c, k)] = true;
+    queue_.push(
+        {std::hypot(static_cast<double>(c.row - to_.row), static_cast<double>(c.col - to_.col)), c,
+         k});
+  }
+  void consider(terrain::CellIndex c, int k) {
+    if (queued_[slot(c, k)]) return;
+    const CellKind kind = by_cell_ ? states_.anySector(c) : states_.kind(c, k);
+    if (kind != CellKind::kPassable) {
+      ++borders_[static_cast<std::size_t>(kind)];
+      return;
+    }
+    push(c, k);
+  }
+
+  StateTester& states_;
+  const terrain::GridGeometry& g_;
+  terrain::CellIndex from_, to_;
+  std::vector<int> start_sectors_, goal_sectors_;
+  bool by_cell_ = false;
+  std::vector<bool> queued_;
+  std::priority_queue<Entry, std::vector<Entry>, Later> queue_;
+  std::array<std::size_t, 6> borders_{};
+  std::size_t off_map_ = 0;
+};
+
 std::string degrees(double radians) {
   std::ostringstream text;
   text.precision(3);
@@ -144,92 +273,30 @@ GoalReachability checkGoalReachability(const TerrainFollowingModel& vehicle,
   const std::optional<terrain::CellIndex> to = g.cellAt({goal.x, goal.y});
   if (!from || !to) return out;
   StateTester states(vehicle, map, limits, options);
-  const auto finish = [&]() -> GoalReachability& {
-    out.attitude_samples = states.samples();
+  ReachabilitySearch search(states, g, start, goal, *from, *to);
+  // By cell first (cheap, proves a boxed-in goal), then by sector (proves more).
+  ReachabilitySearch::Outcome outcome = ReachabilitySearch::Outcome::kReached;
+  for (const bool by_cell : {true, false}) {
+    outcome = search.run(by_cell, options.time_limit_s, started, out);
+    if (outcome != ReachabilitySearch::Outcome::kReached) break;
+  }
+  out.attitude_samples = states.samples();
+  out.decided = outcome != ReachabilitySearch::Outcome::kOutOfTime;
+  out.reachable = outcome != ReachabilitySearch::Outcome::kExhausted;
+  if (out.reachable) {
     out.time_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
             .count();
     return out;
-  };
-  const std::vector<int> goal_sectors = sectorsHolding(goal.heading, states);
-  for (int k : goal_sectors) states.markOpen(*to, k);
-  // Greedy best-first towards the goal: over open terrain it walks nearly straight there.
-  struct Entry {
-    double priority;
-    terrain::CellIndex cell;
-    int sector;
-  };
-  const auto later = [](const Entry& a, const Entry& b) { return a.priority > b.priority; };
-  std::priority_queue<Entry, std::vector<Entry>, decltype(later)> queue(later);
-  std::vector<bool> queued(g.cellCount() * static_cast<std::size_t>(states.sectors()), false);
-  std::vector<bool> reached(g.cellCount(), false);
-  const auto distance = [&](terrain::CellIndex c) {
-    return std::hypot(static_cast<double>(c.row - to->row), static_cast<double>(c.col - to->col));
-  };
-  const auto push = [&](terrain::CellIndex c, int k) {
-    queued[states.index(c, k)] = true;
-    queue.push({distance(c), c, k});
-  };
-  for (int k : sectorsHolding(start.heading, states)) {
-    states.markOpen(*from, k);
-    push(*from, k);
   }
-  std::array<std::size_t, 6> borders{};  // states refused, by CellKind
-  std::size_t off_map = 0;
-  std::size_t& cells_reached = out.cells_reached;
-  const int n = states.sectors();
-  while (!queue.empty()) {
-    const Entry e = queue.top();
-    queue.pop();
-    ++out.states_visited;
-    if (!reached[g.linearIndex(e.cell)]) {
-      reached[g.linearIndex(e.cell)] = true;
-      ++cells_reached;
-    }
-    if (e.cell == *to &&
-        std::find(goal_sectors.begin(), goal_sectors.end(), e.sector) != goal_sectors.end()) {
-      return finish();
-    }
-    if (options.time_limit_s && out.states_visited % 256 == 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >
-            *options.time_limit_s) {
-      out.decided = false;
-      return finish();
-    }
-    const auto consider = [&](terrain::CellIndex c, int k) {
-      if (queued[states.index(c, k)]) return;
-      const CellKind kind = states.kind(c, k);
-      if (kind != CellKind::kPassable) {
-        ++borders[static_cast<std::size_t>(kind)];
-        return;
-      }
-      push(c, k);
-    };
-    // Turn into the next sector inside the cell.
-    consider(e.cell, (e.sector + 1) % n);
-    consider(e.cell, (e.sector + n - 1) % n);
-    // Drive across an edge or a corner the sector's headings cross.
-    for (int dr = -1; dr <= 1; ++dr) {
-      for (int dc = -1; dc <= 1; ++dc) {
-        if ((dr == 0 && dc == 0) || !crosses(states, e.sector, dr, dc)) continue;
-        const terrain::CellIndex next{e.cell.row + dr, e.cell.col + dc};
-        if (!g.isValid(next)) {
-          ++off_map;
-          continue;
-        }
-        consider(next, e.sector);
-      }
-    }
-  }
-  out.reachable = false;
   std::ostringstream why;
   why.precision(3);
   why << "the goal cannot be reached from the start: driving forwards, the vehicle can reach "
-      << cells_reached << " cells (" << cells_reached * g.cell * g.cell
+      << out.cells_reached << " cells (" << out.cells_reached * g.cell * g.cell
       << " m^2) from the start, bounded by";
   const char* sep = " ";
   const auto border = [&](CellKind kind, const std::string& text) {
-    if (borders[static_cast<std::size_t>(kind)] == 0) return;
+    if (search.borders()[static_cast<std::size_t>(kind)] == 0) return;
     why << sep << text;
     sep = ", ";
   };
@@ -240,9 +307,11 @@ GoalReachability checkGoalReachability(const TerrainFollowingModel& vehicle,
   border(CellKind::kNoContact, "cells where the vehicle has no attitude (no contact)");
   border(CellKind::kLethal, "lethal cells");
   border(CellKind::kNoData, "no-data cells");
-  if (off_map > 0) why << sep << "the map's edge";
+  if (search.offMap() > 0) why << sep << "the map's edge";
   out.reason = why.str();
-  return finish();
+  out.time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+  return out;
 }
 
 }  // namespace terratraj::models

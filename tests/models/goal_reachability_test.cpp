@@ -104,6 +104,8 @@ TEST(GoalReachability, ALethalRingBoxesTheGoalIn) {
   EXPECT_FALSE(r.reachable);
   EXPECT_NE(r.reason.find("lethal cells"), std::string::npos) << r.reason;
   EXPECT_NE(r.reason.find("the map's edge"), std::string::npos) << r.reason;
+  // Settled by the search by cell: one state per cell, not one per (cell, sector).
+  EXPECT_EQ(r.states_visited, r.cells_reached);
   // From inside the ring to inside it: reachable, and the walk is short.
   const GoalReachability inside = check(map, {19.0, 19.0, 0.25 * kPi}, {20.0, 20.0, 0.25 * kPi});
   EXPECT_TRUE(inside.reachable);

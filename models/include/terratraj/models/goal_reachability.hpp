@@ -16,7 +16,11 @@
 // across the shared edge (for a corner, across both edges). The search allows exactly those
 // moves. It ignores speed, curvature, their rates, the speed tables and the map margin, each of
 // which only removes trajectories; the tolerance covers the attitude between the samples. The
-// start's and the goal's own states always count as open.
+// start's and the goal's own states always count as open. A first, cheaper search by cell (a
+// cell open when any of its sectors is, every neighbour enterable) settles a goal boxed in by
+// lethal cells with one state per cell (a whole 559 x 495 map: 0.4 s for the point model, 4.8 s
+// for the rocker-bogie, against 5 s and 42 s by sector); only when it reaches the goal does the
+// search by sector run.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -45,8 +49,8 @@ struct GoalReachability {
   /// Why not (empty when reachable): the cells reached, their area and the limits that box the
   /// start in, as a sentence for a report.
   std::string reason;
-  std::size_t states_visited = 0;    ///< (cell, sector) states the search took from its queue
-  std::size_t cells_reached = 0;     ///< distinct cells among them
+  std::size_t states_visited = 0;    ///< states both searches took from their queues
+  std::size_t cells_reached = 0;     ///< distinct cells the last search reached
   std::size_t attitude_samples = 0;  ///< vehicle attitudes computed
   double time_ms = 0.0;              ///< wall clock of the check [ms]
 };
