@@ -245,17 +245,11 @@ class ReachabilitySearch {
   std::size_t off_map_ = 0;
 };
 
-std::string degrees(double radians) {
+// `value` to three significant digits, for a reason.
+std::string threeDigits(double value) {
   std::ostringstream text;
   text.precision(3);
-  text << radians * 180.0 / kPi;
-  return text.str();
-}
-
-std::string percent(double fraction) {
-  std::ostringstream text;
-  text.precision(3);
-  text << fraction * 100.0 << " %";
+  text << value;
   return text.str();
 }
 
@@ -301,9 +295,10 @@ GoalReachability checkGoalReachability(const TerrainFollowingModel& vehicle,
     sep = ", ";
   };
   border(CellKind::kSteep, "slopes where no heading the vehicle can turn to keeps pitch within " +
-                               degrees(limits.pitch_max) + " deg and roll within " +
-                               degrees(limits.roll_max) + " deg (" +
-                               percent(options.limit_tolerance) + " slack)");
+                               threeDigits(limits.pitch_max * 180.0 / kPi) +
+                               " deg and roll within " +
+                               threeDigits(limits.roll_max * 180.0 / kPi) + " deg (" +
+                               threeDigits(options.limit_tolerance * 100.0) + " % slack)");
   border(CellKind::kNoContact, "cells where the vehicle has no attitude (no contact)");
   border(CellKind::kLethal, "lethal cells");
   border(CellKind::kNoData, "no-data cells");

@@ -93,8 +93,8 @@ void finalise(MotionPrimitive& p) {
 // Lattice offsets to try for a turn by dtheta from `heading`, best first, at most `count`:
 // chords at least as long as the reference turn and at most 3 times, whose direction deviates
 // from the turn's mean heading by an angle an S-bend of that length can absorb (lateral offset
-// sigma_s L^3 / 32 for four clothoids of length L / 4, or kappa_max L^2 / 4 for two arcs where
-// that is less, halved for safety), shortest first.
+// sigma_s L^3 / 32 for four clothoids of length L / 4, halved for safety; or kappa_max L^2 / 4
+// for two arcs, where that is less: with a large sigma_s, kappa_max binds), shortest first.
 std::vector<Eigen::Vector2i> candidateOffsets(double heading, double dtheta, double reference,
                                               double sigma_s, double kappa_max, double resolution,
                                               int count) {
@@ -154,10 +154,6 @@ MotionPrimitive rotateQuarterTurns(const MotionPrimitive& p, int quarter_turns,
   }
   return r;
 }
-
-}  // namespace
-
-namespace {
 
 // solvePrimitive() with the limits as given.
 std::optional<MotionPrimitive> solveOnce(double start_heading, const Eigen::Vector2d& end,
