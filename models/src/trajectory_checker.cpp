@@ -173,6 +173,18 @@ void checkSamples(const std::vector<TrajectorySample>& s, const TrajectoryRequir
   }
 }
 
+// How far the heading of a segment whose curvature runs linearly (in arc length) from
+// `kappa_a` to `kappa_b` [1/m] over `length` [m] goes beyond the range of its end headings
+// [rad]: zero unless the curvature changes sign (an S-bend between two rows, as a planner's
+// clothoid patches have), then max(kappa_a^2, kappa_b^2) length / (2 |kappa_a - kappa_b|). The
+// direction of a chord is the heading at some point of the arc (the mean value theorem), so
+// it lies within the end headings widened by this much.
+double headingExcursion(double kappa_a, double kappa_b, double length) {
+  if (!(kappa_a * kappa_b < 0.0)) return 0.0;
+  return std::max(kappa_a * kappa_a, kappa_b * kappa_b) * length /
+         (2.0 * std::abs(kappa_a - kappa_b));
+}
+
 // The rules between consecutive samples: time order, rates, motion, the swept map cells.
 void checkSegments(const std::vector<TrajectorySample>& s, const TrajectoryRequirements& r,
                    Violations& found) {
@@ -200,7 +212,9 @@ void checkSegments(const std::vector<TrajectorySample>& s, const TrajectoryRequi
       const double mean_heading = a.heading + 0.5 * wrapped(b.heading - a.heading);
       const double off = std::abs(wrapped(std::atan2(dy, dx) - mean_heading));
       found.above("heading_of_motion", off,
-                  tol.heading + 0.5 * std::abs(wrapped(b.heading - a.heading)), 0.0, i);
+                  tol.heading + 0.5 * std::abs(wrapped(b.heading - a.heading)) +
+                      headingExcursion(a.curvature, b.curvature, distance),
+                  0.0, i);
     }
     if (map == nullptr) continue;
     const int steps = std::max(

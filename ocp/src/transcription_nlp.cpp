@@ -426,10 +426,22 @@ bool TranscriptionNlp::hessian(const double* x_data, double sigma, const double*
       plus(i) += step;
       minus(i) -= step;
       models::AttitudeWorkspace workspace = workspaces_[ps];
-      if (!pointLagrangianGradient(plus, scaled_nu, mu, c, workspace, g_plus)) return false;
+      const bool has_plus = pointLagrangianGradient(plus, scaled_nu, mu, c, workspace, g_plus);
       workspace = workspaces_[ps];
-      if (!pointLagrangianGradient(minus, scaled_nu, mu, c, workspace, g_minus)) return false;
-      h.col(i) = (g_plus - g_minus) / (2.0 * step);
+      const bool has_minus = pointLagrangianGradient(minus, scaled_nu, mu, c, workspace, g_minus);
+      if (has_plus && has_minus) {
+        h.col(i) = (g_plus - g_minus) / (2.0 * step);
+        continue;
+      }
+      // One side undefined (the point lies beside no data, where the surface ends): a
+      // one-sided difference from the point itself.
+      PointVector g_here;
+      workspace = workspaces_[ps];
+      if ((!has_plus && !has_minus) ||
+          !pointLagrangianGradient(w, scaled_nu, mu, c, workspace, g_here)) {
+        return false;
+      }
+      h.col(i) = has_plus ? (g_plus - g_here) / step : (g_here - g_minus) / step;
     }
     h = 0.5 * (h + h.transpose()).eval();
     for (int i = 0; i < kPointSize; ++i) {

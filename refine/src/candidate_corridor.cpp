@@ -62,12 +62,25 @@ std::vector<Eigen::Vector2d> CandidateRefiner::shortcutPath(
       points.push_back(a + (b - a) * (static_cast<double>(j) / steps));
   }
   const double step = 0.25 * problem_->map->geometry().cell;
+  models::AttitudeWorkspace workspace;
+  models::AttitudeResult placed;
+  // Clear of impassable cells by `clearance`, then (the costlier test, for the segments that
+  // pass the first) the vehicle can be placed along it: beside no data the surface is
+  // undefined farther out than the no-data cells themselves on a coarse map.
   const auto clear = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
     for (int j = 0; j <= steps; ++j) {
       const std::optional<terrain::Clearance> c =
           clearance_.at(a + (b - a) * (static_cast<double>(j) / steps));
       if (!c || c->distance < clearance) return false;
+    }
+    const double heading = std::atan2(b.y() - a.y(), b.x() - a.x());
+    for (int j = 0; j <= steps; ++j) {
+      const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(j) / steps);
+      if (problem_->vehicle->compute({p.x(), p.y(), heading}, workspace, placed) !=
+          models::AttitudeStatus::kOk) {
+        return false;
+      }
     }
     return true;
   };

@@ -176,7 +176,7 @@ CandidateRefiner::CandidateRefiner(const PlanningProblem& problem,
       bvp_(&bvp),
       frames_(&frames),
       options_(options),
-      clearance_(*problem.map),
+      clearance_(*problem.map, 1e3, problem.vehicle->surface().stencilReach()),
       candidate_requirements_(requirementsOf(problem)),
       refined_requirements_(ocp::solveRequirements(*problem.vehicle, bvp,
                                                    options.parametric.criteria, problem.map)) {}

@@ -37,12 +37,19 @@ struct Seed {
   double turning = 0.0;  ///< total |heading change| along the path [rad]
 };
 
-// Whether a sampled path crosses a lethal, no-data or off-map cell.
-bool crossesImpassable(const std::vector<ocp::PathPoint2>& points,
-                       const terrain::ElevationMap& map) {
+// Whether a sampled path crosses a lethal, no-data or off-map cell, or passes where the vehicle
+// cannot be placed (a contact point, or the terrain surface's stencil, over no data or off the
+// map: a word beside a no-data region). `workspace` is the caller's.
+bool crossesImpassable(const std::vector<ocp::PathPoint2>& points, const terrain::ElevationMap& map,
+                       const models::TerrainFollowingModel& vehicle,
+                       models::AttitudeWorkspace& workspace) {
+  models::AttitudeResult placed;
   for (const ocp::PathPoint2& p : points) {
     const std::optional<terrain::CellIndex> cell = map.geometry().cellAt({p.x, p.y});
     if (!cell || map.isNoData(*cell) || map.isLethal(*cell)) return true;
+    if (vehicle.compute({p.x, p.y, p.heading}, workspace, placed) != models::AttitudeStatus::kOk) {
+      return true;
+    }
   }
   return false;
 }
@@ -56,19 +63,21 @@ double seedRadius(const ocp::BoundaryValueProblem& problem) {
 }
 
 // The Dubins seeds, shortest first; `blocked` counts the words dropped for crossing an
-// impassable cell of `map`.
-std::vector<Seed> dubinsSeeds(const ocp::BoundaryValueProblem& problem,
+// impassable cell of `map` or passing where `vehicle` cannot be placed.
+std::vector<Seed> dubinsSeeds(const models::TerrainFollowingModel& vehicle,
+                              const ocp::BoundaryValueProblem& problem,
                               const terrain::ElevationMap* map, const SeededSolveOptions& options,
                               int& blocked) {
   std::vector<Seed> seeds;
   blocked = 0;
+  models::AttitudeWorkspace workspace;
   const std::vector<ocp::DubinsPath> paths =
       ocp::dubinsPaths({problem.start.x, problem.start.y, problem.start.heading},
                        {problem.goal.x, problem.goal.y, problem.goal.heading}, seedRadius(problem));
   for (const ocp::DubinsPath& path : paths) {
     if (static_cast<int>(seeds.size()) >= options.max_words) break;
     const std::vector<ocp::PathPoint2> points = path.sample(options.seed_spacing_m);
-    if (map != nullptr && crossesImpassable(points, *map)) {
+    if (map != nullptr && crossesImpassable(points, *map, vehicle, workspace)) {
       ++blocked;
       continue;
     }
@@ -338,7 +347,7 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
     }
   } else {
     int blocked = 0;
-    const std::vector<Seed> seeds = dubinsSeeds(problem, map, options, blocked);
+    const std::vector<Seed> seeds = dubinsSeeds(vehicle, problem, map, options, blocked);
     double shortest = seeds.empty() ? 0.0 : seeds.front().length;
     for (const Seed& seed : seeds) {
       if (!best.attempts.empty()) {
@@ -361,14 +370,14 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
         !deadline.over()) {
       const Clock::time_point t0 = Clock::now();
       const std::string why = blocked > 0 && seeds.empty()
-                                  ? "every Dubins word crosses an impassable cell"
+                                  ? "every Dubins word crosses an impassable cell or no data"
                                   : "no Dubins word gave a verified trajectory";
       record(solveFromSearch(vehicle, problem, *map, options, deadline.left(), why), t0);
     }
     if (best.attempts.empty()) {
       best.status = ocp::SolveStatus::kInfeasible;
       best.reason =
-          "no seed: every Dubins word crosses an impassable cell and no search seed "
+          "no seed: every Dubins word crosses an impassable cell or no data and no search seed "
           "was allowed";
     }
   }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "terratraj/terrain/no_data_band.hpp"
+
 namespace terratraj::terrain {
 namespace {
 
@@ -42,18 +44,21 @@ void transform1d(const double* f, int n, double* d, std::vector<int>& v, std::ve
 
 }  // namespace
 
-ClearanceMap::ClearanceMap(const ElevationMap& map, double max_distance)
+ClearanceMap::ClearanceMap(const ElevationMap& map, double max_distance, int no_data_reach)
     : geometry_(map.geometry()) {
   const int rows = geometry_.rows, cols = geometry_.cols;
   // Larger than any squared distance on the grid: "no obstacle in this line yet".
   const double far =
       4.0 * (static_cast<double>(rows) * rows + static_cast<double>(cols) * cols) + 1.0;
   std::vector<double> squared(geometry_.cellCount(), far);
+  const std::vector<std::uint8_t> band =
+      no_data_reach > 0 ? noDataBand(map, no_data_reach) : std::vector<std::uint8_t>();
   bool any = false;
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       const CellIndex cell{r, c};
-      if (map.isLethal(cell) || map.isNoData(cell)) {
+      if (map.isLethal(cell) || map.isNoData(cell) ||
+          (!band.empty() && band[geometry_.linearIndex(cell)] != 0)) {
         squared[geometry_.linearIndex(cell)] = 0.0;
         any = true;
       }

@@ -95,6 +95,18 @@ const char* interpolationName(Interpolation method) {
   return "unknown";
 }
 
+int TerrainSurface::stencilReach() const {
+  switch (method_) {
+    case Interpolation::kNearest:
+      return 0;
+    case Interpolation::kBilinear:
+      return 1;
+    case Interpolation::kBicubic:
+      return 2;
+  }
+  return 2;
+}
+
 Eigen::Vector3d HeightSample::normal() const {
   return Eigen::Vector3d(-gradient.x(), -gradient.y(), 1.0).normalized();
 }

@@ -181,5 +181,30 @@ TEST_F(SeededSolverTest, AReachableGoalPassesTheCheckAndIsSolved) {
   EXPECT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
 }
 
+// No data beside the straight route (gully_problem.yaml's shoulder in small): the cells under
+// every Dubins word hold data, but the bicubic surface is undefined along them (its stencil
+// reaches the no-data cells). The words are dropped before any solve, the search seed goes
+// round, and its refinement keeps where the surface is defined.
+TEST_F(SeededSolverTest, NoDataBesideTheWordsLeavesItToTheSearchSeed) {
+  for (int row = 21; row <= 40; ++row) {
+    for (int col = 36; col <= 44; ++col) map_.elevation()(row, col) = std::nanf("");
+  }
+  ocp::BoundaryValueProblem problem;
+  problem.start = {6.0, 5.0, 0.0, 0.0, 0.0};
+  problem.goal = {16.0, 5.0, 0.0, 0.0, 0.0};
+  problem.limits = sets::roverLimits();
+  const SeededSolution s = solve(problem, CoreMethod::kAuto);
+  EXPECT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
+  for (const SeedAttempt& a : s.attempts) {
+    EXPECT_EQ(a.reason.find("cannot be placed"), std::string::npos) << a.seed << ": " << a.reason;
+  }
+  ASSERT_FALSE(s.attempts.empty());
+  EXPECT_NE(s.attempts.back().seed.find("search"), std::string::npos) << s.attempts.back().seed;
+  for (const models::TrajectorySample& row : s.verified.trajectory.samples) {
+    EXPECT_TRUE(surface_.height({row.x, row.y}).has_value()) << row.x << ", " << row.y;
+  }
+  expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);
+}
+
 }  // namespace
 }  // namespace terratraj::refine

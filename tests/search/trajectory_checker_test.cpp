@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "search_fixtures.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 
@@ -59,6 +61,48 @@ TEST(TrajectoryChecker, CatchesEachInjectedViolation) {
   // A steeper limit than the path's attitude.
   world->problem.limits.v_max = 0.5 * v_max;
   EXPECT_TRUE(hasViolation(checker.check(result.trajectory), "v_max"));
+}
+
+// Clothoid S-bends (curvature +1 to -1 1/m linearly over 1.5 m, and back) written as rows 1.5 m
+// apart, as the PRM writes its patches on a 3 m DEM: the chord leaves the end headings' range, but
+// by less than the arc's own heading excursion, so the heading of motion holds. The same rows
+// with a curvature that keeps its sign (no excursion possible) break it.
+TEST(TrajectoryChecker, AcceptsAClothoidSBendBetweenSparseRows) {
+  std::unique_ptr<testing::TestWorld> world = testing::makeWorld(terrain::TerrainKind::kFlat, 96);
+  world->problem.limits.kappa_max = 1.0;
+  world->problem.limits.sigma_max = 1.0;
+  const double v = 0.5, length = 1.5;
+  const auto curvature = [&](double s) {
+    return s < length ? 1.0 - 2.0 * s / length : -1.0 + 2.0 * (s - length) / length;
+  };
+  models::Trajectory s_bend;
+  s_bend.has_column.fill(true);
+  double x = 4.0, y = 12.0, heading = 0.0;
+  const int steps = 3000;
+  const double ds = 2.0 * length / steps;
+  for (int k = 0; k <= steps; ++k) {
+    const double s = k * ds;
+    const double kappa = curvature(s);
+    if (k % (steps / 2) == 0) {
+      models::TrajectorySample row;
+      row.t = s / v;
+      row.x = x, row.y = y, row.heading = heading;
+      row.v = v, row.curvature = kappa, row.omega = v * kappa;
+      s_bend.samples.push_back(row);
+    }
+    // Midpoint rule on the heading, exact position increments for a short step.
+    const double mid_heading = heading + 0.5 * ds * kappa;
+    x += ds * std::cos(mid_heading);
+    y += ds * std::sin(mid_heading);
+    heading += ds * curvature(s + 0.5 * ds);
+  }
+  ASSERT_EQ(s_bend.samples.size(), 3u);
+  const TrajectoryChecker checker(world->problem);
+  const CheckReport report = checker.check(s_bend, false);
+  EXPECT_FALSE(hasViolation(report, "heading_of_motion")) << report.summary();
+  models::Trajectory straight_claimed = s_bend;
+  for (models::TrajectorySample& row : straight_claimed.samples) row.curvature = row.omega = 0.0;
+  EXPECT_TRUE(hasViolation(checker.check(straight_claimed, false), "heading_of_motion"));
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/finite_difference.hpp"
+#include "terratraj/terrain/no_data_band.hpp"
 
 namespace terratraj::terrain {
 namespace {
@@ -52,6 +53,28 @@ TEST(ClearanceMap, GradientMatchesDifferencesAndOffMapIsEmpty) {
   EXPECT_FALSE(clearance.at({NAN, 2.0}).has_value());
   const ClearanceMap open(mapWithLethalCells({}), 50.0);
   EXPECT_DOUBLE_EQ(open.at({3.0, 3.0})->distance, 50.0);
+}
+
+// The band beside no data where a surface is undefined: the cells within `reach` of a no-data
+// cell; a clearance map given the reach measures from the band, not from the no-data cell.
+TEST(NoDataBand, IsTheSquareWithinReachAndTheClearanceStartsAtIt) {
+  ElevationMap map = mapWithLethalCells({});
+  EXPECT_TRUE(noDataBand(map, 2).empty());
+  map.elevation()(10, 20) = std::nanf("");
+  const std::vector<std::uint8_t> band = noDataBand(map, 2);
+  const GridGeometry& g = map.geometry();
+  ASSERT_EQ(band.size(), g.cellCount());
+  for (int r = 0; r < g.rows; ++r) {
+    for (int c = 0; c < g.cols; ++c) {
+      const bool inside = std::abs(r - 10) <= 2 && std::abs(c - 20) <= 2;
+      EXPECT_EQ(band[g.linearIndex({r, c})] != 0, inside) << r << ", " << c;
+    }
+  }
+  const ClearanceMap plain(map);
+  const ClearanceMap banded(map, 1e3, 2);
+  EXPECT_NEAR(plain.cellClearance({10, 22}), 2.0 * g.cell - 0.5 * g.cell, 1e-9);
+  EXPECT_LE(banded.cellClearance({10, 22}), 0.0);
+  EXPECT_NEAR(banded.cellClearance({10, 25}), 3.0 * g.cell - 0.5 * g.cell, 1e-9);
 }
 
 }  // namespace

@@ -10,9 +10,11 @@
 // model within pitch_max / roll_max (and equal to the file's columns); v within the tables; no
 // lethal, no-data or off-map cell under the sample.
 // Between consecutive samples: time strictly increasing; |dv/dt| <= a_max; |d curvature/dt| <=
-// sigma_max; horizontal motion no longer than the speeds allow; motion along the heading; no
-// lethal, no-data or off-map cell under points every cell / 8 on the segment (the planners'
-// footprint: the vehicle's reference point swept along its path).
+// sigma_max; horizontal motion no longer than the speeds allow; motion along the heading (the
+// chord's direction within the headings the arc can take: its ends', widened when the
+// curvature changes sign between them, as in a planner's clothoid S-bend); no lethal, no-data
+// or off-map cell under points every cell / 8 on the segment (the planners' footprint: the
+// vehicle's reference point swept along its path).
 // Optionally the first sample is the start and the last lies within the goal's tolerances.
 //
 // This is the check behind every verdict (trajectory_verdict.hpp): the contract's `converged`

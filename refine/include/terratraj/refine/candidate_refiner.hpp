@@ -180,7 +180,8 @@ class CandidateRefiner {
   // against refinedRequirements()); a converged solve that left the class is kInfeasible.
   void accept(ocp::SolveStatus status, std::string reason, models::TrajectoryVerdict verdict,
               const TrajectoryFigures& before, RefinementResult& out) const;
-  // The candidate's path with greedy straight shortcuts keeping `clearance` [m].
+  // The candidate's path with greedy straight shortcuts keeping `clearance` [m] from impassable
+  // cells, along which the vehicle can be placed.
   std::vector<Eigen::Vector2d> shortcutPath(const std::vector<Eigen::Vector2d>& path,
                                             double clearance) const;
   // The map with every cell farther than corridor_radius_m from the candidate made lethal.

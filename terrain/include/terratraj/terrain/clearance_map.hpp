@@ -1,8 +1,9 @@
 #pragma once
-// ClearanceMap: distance from any point of the map to the nearest impassable cell (lethal or
-// no data), from an exact Euclidean distance transform of the grid (Felzenszwalb &
-// Huttenlocher), interpolated bilinearly between cell centres so that it is continuous with a
-// piecewise-smooth gradient: the clearance constraint of the optimisers uses it.
+// ClearanceMap: distance from any point of the map to the nearest impassable cell (lethal, no
+// data, optionally the band beside no data where the surface is undefined), from an exact Euclidean
+// distance transform of the grid (Felzenszwalb & Huttenlocher), interpolated bilinearly between
+// cell centres so that it is continuous with a piecewise-smooth gradient: the clearance constraint
+// of the optimisers uses it.
 
 #include <Eigen/Core>
 #include <optional>
@@ -21,11 +22,13 @@ struct Clearance {
 /// Clearance from the impassable cells of one map. Immutable after construction.
 class ClearanceMap {
  public:
-  /// Distance transform of `map`'s lethal and no-data cells. The clearance of a cell centre is
-  /// the distance to the nearest impassable cell centre minus half a cell (about the distance
-  /// to that cell's edge), negative inside one. A map with no impassable cell gets
-  /// `max_distance` everywhere. Throws std::bad_alloc only.
-  explicit ClearanceMap(const ElevationMap& map, double max_distance = 1e3);
+  /// Distance transform of `map`'s lethal and no-data cells, and of the cells within
+  /// `no_data_reach` cells of no data (noDataBand(): pass the surface's stencilReach() to keep
+  /// an optimiser where the surface is defined). The clearance of a cell centre is the distance
+  /// to the nearest impassable cell centre minus half a cell (about the distance to that cell's
+  /// edge), negative inside one. A map with no impassable cell gets `max_distance` everywhere.
+  /// Throws std::bad_alloc only.
+  explicit ClearanceMap(const ElevationMap& map, double max_distance = 1e3, int no_data_reach = 0);
 
   /// Clearance at a local point [m], bilinear between cell centres (clamped at the borders);
   /// std::nullopt outside the map or for NaN coordinates. Never throws.

@@ -71,6 +71,10 @@ class TerrainSurface {
   std::optional<SurfaceDerivatives> sampleWithHessian(const Eigen::Vector2d& local) const;
   /// Height only (same rules as sample()).
   std::optional<double> height(const Eigen::Vector2d& local) const;
+  /// How many cells beyond the cell holding a point its stencil reads, in rows and in columns
+  /// (0 nearest, 1 bilinear, 2 bicubic): the surface is undefined somewhere in every cell this
+  /// close to a no-data cell, and defined everywhere in a cell farther from all of them.
+  int stencilReach() const;
 
  private:
   std::optional<HeightSample> sampleNearest(double x, double y) const;
