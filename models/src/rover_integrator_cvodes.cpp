@@ -122,7 +122,8 @@ class RoverIntegrator::CvodesSession {
       : parameter_count_(parameter_count),
         with_cost_(with_cost),
         state_size_(with_cost ? 4 : 3),
-        max_steps_(options.max_steps) {
+        max_steps_(options.max_steps),
+        deadline_(options.deadline) {
     ok_ = SUNContext_Create(nullptr, &context_) == 0;
     if (!ok_) return;
     y_ = N_VNew_Serial(state_size_, context_);
@@ -266,6 +267,14 @@ class RoverIntegrator::CvodesSession {
   // Steps until the internal time reaches t_out. On failure, reports the last accepted step.
   bool advance(double t_out, realtype& t_internal, IntegrationResult& result) {
     while (t_internal < t_out) {
+      if (deadline_ && (steps_taken_ & 63) == 0 && std::chrono::steady_clock::now() > *deadline_) {
+        result.t_reached = last_good_time_;
+        result.final_state = last_good_state_;
+        fail(result, IntegrationStatus::kSolverFailure,
+             "CVODES: stopped at the time limit after " + std::to_string(steps_taken_) +
+                 " internal steps");
+        return false;
+      }
       if (++steps_taken_ > max_steps_) {
         result.t_reached = last_good_time_;
         result.final_state = last_good_state_;
@@ -334,6 +343,7 @@ class RoverIntegrator::CvodesSession {
   CallbackData data_;
   RoverRates sample_rates_;
   long max_steps_;
+  std::optional<std::chrono::steady_clock::time_point> deadline_;
   long steps_taken_ = 0;
   double last_good_time_ = 0.0;
   Eigen::Vector3d last_good_state_ = Eigen::Vector3d::Zero();

@@ -23,6 +23,11 @@ SolveResult runSolver(const models::TerrainFollowingModel& vehicle,
                       const InitialGuess& guess) {
   ParametricModelOptions model_options;
   model_options.integrator = options.integrator;
+  if (options.time_limit_s) {
+    model_options.integrator.deadline =
+        Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double>(*options.time_limit_s));
+  }
   NewtonOptions newton;
   newton.criteria = options.criteria;
   newton.max_iterations = options.max_iterations;
@@ -144,6 +149,14 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
   if (solution.solver.q.size() == 0) solution.solver.q = solution.initial_guess.q;
   double verification_ms = 0.0;
   const auto verify = [&] {
+    // A solve stopped by the time limit is not re-simulated (the re-simulation of a wild
+    // iterate can take seconds): its status already says why it ended.
+    if (solution.solver.status != SolveStatus::kConverged && options.time_limit_s &&
+        elapsed_ms() >= 1e3 * *options.time_limit_s) {
+      solution.verified = VerifiedTrajectory();
+      solution.verified.message = "not re-simulated: the time limit was reached";
+      return;
+    }
     const double before = elapsed_ms();
     solution.verified =
         verifyParametricSolution(vehicle, problem, solution.solver.q, map, options.verification);

@@ -76,6 +76,10 @@ IpoptOutcome ipoptOutcome(Ipopt::ApplicationReturnStatus status, bool timed_out,
   const std::string name = ipoptStatusName(status);
   std::ostringstream limit;
   limit << "time limit of " << time_limit_s.value_or(0.0) << " s reached";
+  if (timed_out && status != Ipopt::Solve_Succeeded &&
+      status != Ipopt::Solved_To_Acceptable_Level) {
+    return {SolveStatus::kMaxIterations, limit.str()};
+  }
   switch (status) {
     case Ipopt::Solve_Succeeded:
     case Ipopt::Solved_To_Acceptable_Level:

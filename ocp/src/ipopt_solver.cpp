@@ -89,6 +89,15 @@ class TrajectoryNlp final : public Ipopt::TNLP {
     cache_q_ = q;
     cache_ok_ = false;
     message_.clear();
+    // Past the time limit, once Ipopt iterates, no new point is integrated (one integration can
+    // take seconds where the dynamics are stiff): its line search fails at once and the solve
+    // ends timed out. (The starting point is always evaluated: the first iteration's callback
+    // stops a solve whose limit has passed.)
+    if (!history_.empty() && accounting_.pastTimeLimit(options_.time_limit_s)) {
+      timed_out_ = true;
+      message_ = "time limit reached";
+      return false;
+    }
     bool ok;
     if (rows_per_point_ > 0) {
       ok = model_.evaluateWithPath(cache_q_, true, tau_, eval_, path_);

@@ -302,6 +302,26 @@ TEST(RoverIntegrator, SamplesAtRequestedTimes) {
   }
 }
 
+// A deadline stops a CVODES integration with the reason; a later one lets it finish.
+TEST(RoverIntegrator, StopsAtItsDeadline) {
+  const ElevationMap map = generated(terrain::TerrainKind::kHills);
+  const TerrainSurface surface(map, Interpolation::kBicubic);
+  const PointAttitudeModel model(surface);
+  const RoverKinematics kinematics(model);
+  const PolynomialControls controls({0.8}, {0.1});
+  IntegratorOptions options = cvodes(1e-10);
+  options.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  IntegrationResult result;
+  RoverIntegrator past(kinematics, options);
+  past.integrate({8.0, 18.0, 0.0}, controls, 5.0, {}, result);
+  EXPECT_EQ(result.status, IntegrationStatus::kSolverFailure);
+  EXPECT_NE(result.message.find("time limit"), std::string::npos) << result.message;
+  options.deadline = std::chrono::steady_clock::now() + std::chrono::hours(1);
+  RoverIntegrator later(kinematics, options);
+  later.integrate({8.0, 18.0, 0.0}, controls, 5.0, {}, result);
+  EXPECT_EQ(result.status, IntegrationStatus::kOk) << result.message;
+}
+
 TEST(RoverIntegrator, FailuresAreStatusesWithReasons) {
   const ElevationMap map = generated(terrain::TerrainKind::kHills, 64);
   const TerrainSurface surface(map, Interpolation::kBicubic);

@@ -17,6 +17,7 @@
 // final_state holds the last good state and t_reached its time.
 
 #include <Eigen/Core>
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -41,7 +42,11 @@ struct IntegratorOptions {
   double relative_tolerance = 1e-8;   ///< CVODES, > 0
   double absolute_tolerance = 1e-10;  ///< CVODES [m, rad], > 0
   long max_steps = 1000000;           ///< CVODES internal steps per call, > 0
-  bool sensitivities = false;         ///< also integrate d state / d q
+  /// CVODES: wall clock by which an integration stops (kSolverFailure, "time limit"), checked
+  /// every 64 internal steps; absent: none. A solve's time limit, so that one stiff
+  /// integration (up to max_steps steps: seconds) cannot run past it.
+  std::optional<std::chrono::steady_clock::time_point> deadline;
+  bool sensitivities = false;  ///< also integrate d state / d q
   /// CVODES: include the sensitivities in the local error test. Off by default: the steps
   /// chosen for the state already give sensitivities that match finite differences to 1e-5
   /// (tests), and error control costs 6-20x more steps (docs/benchmarks.md).
