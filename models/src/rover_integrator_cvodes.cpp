@@ -266,22 +266,21 @@ class RoverIntegrator::CvodesSession {
  private:
   // Steps until the internal time reaches t_out. On failure, reports the last accepted step.
   bool advance(double t_out, realtype& t_internal, IntegrationResult& result) {
+    // A stop at the last accepted step, with the reason.
+    const auto stop = [&](const std::string& why) {
+      result.t_reached = last_good_time_;
+      result.final_state = last_good_state_;
+      fail(result, IntegrationStatus::kSolverFailure, why);
+      return false;
+    };
     while (t_internal < t_out) {
       if (deadline_ && (steps_taken_ & 63) == 0 && std::chrono::steady_clock::now() > *deadline_) {
-        result.t_reached = last_good_time_;
-        result.final_state = last_good_state_;
-        fail(result, IntegrationStatus::kSolverFailure,
-             "CVODES: stopped at the time limit after " + std::to_string(steps_taken_) +
-                 " internal steps");
-        return false;
+        return stop("CVODES: stopped at the time limit after " + std::to_string(steps_taken_) +
+                    " internal steps");
       }
       if (++steps_taken_ > max_steps_) {
-        result.t_reached = last_good_time_;
-        result.final_state = last_good_state_;
-        fail(result, IntegrationStatus::kSolverFailure,
-             "CVODES: CV_TOO_MUCH_WORK (more than max_steps = " + std::to_string(max_steps_) +
-                 " internal steps)");
-        return false;
+        return stop("CVODES: CV_TOO_MUCH_WORK (more than max_steps = " +
+                    std::to_string(max_steps_) + " internal steps)");
       }
       const int flag = CVode(memory_, t_out, y_, &t_internal, CV_ONE_STEP);
       if (flag < 0) {

@@ -3,6 +3,7 @@
 // Ipopt's headers need HAVE_CSTDDEF (set for this target in ocp/CMakeLists.txt).
 #include <coin/IpDenseVector.hpp>
 #include <coin/IpIpoptApplication.hpp>
+#include <coin/IpIpoptCalculatedQuantities.hpp>
 #include <coin/IpIpoptData.hpp>
 #include <coin/IpIteratesVector.hpp>
 #include <coin/IpTNLP.hpp>
@@ -38,6 +39,10 @@ struct RecentPoint {
   Eigen::Vector3d terminal_error;
   double cost;
 };
+
+// Iterations after which a solve whose iterate meets the criteria stops (Ipopt's own test not
+// met by then: it wanders; a solve that converges by Ipopt's test takes fewer).
+constexpr int kWanderingIterations = 100;
 
 // The NLP in Ipopt's terms. Every callback works on one cached evaluation keyed on x (Ipopt
 // asks for f, grad f, g and its Jacobian at the same x): one integration per new x. No
@@ -235,12 +240,12 @@ class TrajectoryNlp final : public Ipopt::TNLP {
   }
 
   bool intermediate_callback(Ipopt::AlgorithmMode mode, Ipopt::Index iter,
-                             Ipopt::Number /*obj_value*/, Ipopt::Number /*inf_pr*/,
+                             Ipopt::Number /*obj_value*/, Ipopt::Number inf_pr,
                              Ipopt::Number inf_du, Ipopt::Number /*mu*/, Ipopt::Number /*d_norm*/,
                              Ipopt::Number /*regularization_size*/, Ipopt::Number /*alpha_du*/,
                              Ipopt::Number alpha_pr, Ipopt::Index /*ls_trials*/,
                              const Ipopt::IpoptData* ip_data,
-                             Ipopt::IpoptCalculatedQuantities* /*ip_cq*/) override {
+                             Ipopt::IpoptCalculatedQuantities* ip_cq) override {
     return detail::guardedCallback([&] {
       last_iteration_ = iter;
       IterationRecord record;
@@ -261,9 +266,18 @@ class TrajectoryNlp final : public Ipopt::TNLP {
         timed_out_ = true;
         return false;  // User_Requested_Stop
       }
+      if (point != nullptr && meetsCriteria(*point, inf_pr, inf_du, ip_cq)) {
+        if (!accepted_ || point->cost < accepted_->cost) accepted_ = *point;
+        // Wandering: Ipopt has not met its own test long after the criteria were met.
+        if (iter >= kWanderingIterations) return false;  // User_Requested_Stop
+      }
       return true;
     });
   }
+
+  /// The iterate of lowest cost that met the criteria (Ipopt's own termination test is much
+  /// tighter); nothing when none did. The solve's answer when Ipopt ends without success.
+  const std::optional<RecentPoint>& accepted() const { return accepted_; }
 
  private:
   // The rows of a fixed end at rest that vanish there (detail::degenerateAtRestEnd) are freed.
@@ -297,6 +311,24 @@ class TrajectoryNlp final : public Ipopt::TNLP {
   // The iterate of this iteration among the recently evaluated points (Ipopt evaluated it
   // before the callback); in the restoration phase (whose iterate is not q) the last point
   // evaluated. Null when none is known.
+  // The solve's criteria at an iterate: the terminal error within them, the path rows within
+  // the constraint tolerance, and stationarity (Ipopt's scaled dual infeasibility, and its
+  // whole optimality error: dual, primal and complementarity) within the Lagrangian gradient
+  // criterion. Ipopt's own `tol` is 100 times tighter; on rough terrain its iterates can wander
+  // for hundreds of iterations at a point these criteria already accept (the robustness set's
+  // davosdorf problems: 300 iterations, the criteria met from the 30th on).
+  bool meetsCriteria(const RecentPoint& point, double inf_pr, double inf_du,
+                     Ipopt::IpoptCalculatedQuantities* ip_cq) const {
+    const ConvergenceCriteria& c = options_.criteria;
+    const double constr_viol_tol = 0.1 * std::min(c.position_m, c.heading_rad);
+    if (!(point.terminal_error.head<2>().norm() <= c.position_m) ||
+        !(std::abs(point.terminal_error.z()) <= c.heading_rad) || !(inf_pr <= constr_viol_tol) ||
+        !(inf_du <= c.lagrangian_gradient) || ip_cq == nullptr) {
+      return false;
+    }
+    return ip_cq->curr_nlp_error() <= c.lagrangian_gradient;
+  }
+
   const RecentPoint* currentPoint(Ipopt::AlgorithmMode mode, const Ipopt::IpoptData* ip_data) {
     if (mode == Ipopt::RegularMode && ip_data != nullptr && Ipopt::IsValid(ip_data->curr())) {
       const auto* x =
@@ -348,6 +380,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
   bool finalized_ = false;
   Eigen::VectorXd final_x_, final_lambda_;
   bool timed_out_ = false;
+  std::optional<RecentPoint> accepted_;
   int last_iteration_ = 0;
 };
 
@@ -440,6 +473,14 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
   result.iterations = result.history.empty() ? 0 : nlp->lastIteration();
   Eigen::VectorXd q = nlp->finalized() ? nlp->finalX() : q0;
   if (q.size() != n || !q.allFinite()) q = q0;
+  detail::IpoptOutcome outcome =
+      detail::ipoptOutcome(status, nlp->timedOut(), options.max_iterations, options.time_limit_s);
+  // Ended without success (wandering, the iteration or time limit, a failed restoration) after
+  // an iterate met the criteria: that iterate is the answer (re-simulated and checked after).
+  if (outcome.status != SolveStatus::kConverged && nlp->accepted()) {
+    q = nlp->accepted()->q;
+    outcome = {SolveStatus::kConverged, ""};
+  }
   result.q = q;
   if (nlp->finalized() && nlp->finalLambda().size() >= 3) {
     result.lambda = nlp->finalLambda().head<3>();
@@ -450,8 +491,6 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
     result.terminal_error = nlp->evaluation().terminal_error;
   }
   const std::string name = detail::ipoptStatusName(status);
-  const detail::IpoptOutcome outcome =
-      detail::ipoptOutcome(status, nlp->timedOut(), options.max_iterations, options.time_limit_s);
   switch (outcome.status) {
     case SolveStatus::kConverged: {
       if (!final_ok) {
