@@ -374,6 +374,36 @@ TEST_F(NlpSolvers, IterationLimitsAreReported) {
   EXPECT_NE(ceres_timed.reason.find("time limit"), std::string::npos) << ceres_timed.reason;
 }
 
+// Ipopt's own test is 100 times tighter than the solve's criteria: an iteration limit that ends
+// the solve after an iterate met the criteria returns that iterate as converged (lowest cost
+// among those that met them), not max_iterations.
+TEST_F(NlpSolvers, AnIterateMeetingTheCriteriaIsTheAnswerAtTheIterationLimit) {
+  const BoundaryValueProblem problem = fanProblem(8, 0);
+  const Eigen::VectorXd q0 = heuristicGuess(problem);
+  ParametricTrajectoryModel model(*vehicle_, problem);
+  IpoptOptions options;
+  options.path_constraints = false;
+  const SolveResult full = solveIpopt(model, nullptr, q0, options);
+  ASSERT_EQ(full.status, SolveStatus::kConverged) << full.reason;
+  const ConvergenceCriteria& c = options.criteria;
+  int first_met = -1;
+  for (const IterationRecord& r : full.history) {
+    if (r.terminal_error <= c.position_m && r.heading_error <= c.heading_rad &&
+        r.lagrangian_gradient <= c.lagrangian_gradient) {
+      first_met = r.iteration;
+      break;
+    }
+  }
+  ASSERT_GE(first_met, 0);
+  ASSERT_LT(first_met, full.iterations - 1) << "Ipopt's test met as soon as the criteria";
+  options.max_iterations = full.iterations - 1;
+  const SolveResult cut = solveIpopt(model, nullptr, q0, options);
+  EXPECT_EQ(cut.status, SolveStatus::kConverged) << cut.reason;
+  EXPECT_LE(cut.terminal_error.head<2>().norm(), c.position_m);
+  EXPECT_LE(std::abs(cut.terminal_error.z()), c.heading_rad);
+  EXPECT_EQ(cut.iterations, full.iterations - 1);
+}
+
 // The rows vanishesAtRest() names are exactly those identically 0 at a point standing still
 // with no yaw rate, whatever the accelerations and the attitude: both Ipopt adapters free them at
 // a fixed end at rest (left there, such a row is active with no free variable in it).
