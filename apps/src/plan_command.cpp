@@ -386,6 +386,10 @@ PlanRun executePlan(const ProblemSpec& problem, const PlanOptions& options,
   if (options.refine) {
     settings = refinementOptions(problem, options.method);
     settings->stop = context.stop;
+    // The planner's solutions end anywhere in its goal region (on a coarse lattice it must be
+    // wider than refine's 0.5 m): the refiner takes them from all of it.
+    settings->endpoint_tolerance_m =
+        std::max(settings->endpoint_tolerance_m, query.goal.position_tolerance);
   }
 
   // The reference frames (TAEASL's classes, the refinements' and the plot's), built once.

@@ -97,10 +97,9 @@ TEST_F(RefineCommandTest, PlanRefineOnForestKeepsEveryClassAndFollowsTheContract
     SCOPED_TRACE(s.dump());
     ASSERT_TRUE(s.contains("refined"));
     const nlohmann::json& refined = s["refined"];
-    for (const char* key :
-         {"status", "cost_s", "file", "method", "iterations", "homotopy", "homotopy_kept",
-          "max_abs_pitch_rad", "max_abs_roll_rad", "constraint_violation", "cost_ratio",
-          "barrier"}) {
+    for (const char* key : {"status", "cost_s", "file", "method", "iterations", "homotopy",
+                            "homotopy_kept", "max_abs_pitch_rad", "max_abs_roll_rad",
+                            "constraint_violation", "cost_ratio", "barrier"}) {
       EXPECT_TRUE(refined.contains(key)) << key;
     }
     EXPECT_EQ(refined["status"], "converged");
@@ -115,6 +114,36 @@ TEST_F(RefineCommandTest, PlanRefineOnForestKeepsEveryClassAndFollowsTheContract
     EXPECT_TRUE(s.contains("max_abs_pitch_rad"));
     expectReachesTheGoal(refined["file"].get<std::string>());
   }
+}
+
+// A coarse lattice (1.5 m) needs a goal region wider than refine's 0.5 m endpoint tolerance:
+// its candidate ends 0.75 m short of the goal, and plan --refine takes it from there (it
+// refused it before: "not a candidate for this problem").
+TEST_F(RefineCommandTest, PlanRefineTakesACoarseLatticesCandidateFromAnywhereInTheGoalRegion) {
+  const std::string problem =
+      write("coarse.yaml",
+            "terrain:\n  generate: {kind: hills, rows: 96, cols: 96, cell: 0.25, seed: 2}\n"
+            "vehicle:\n  model: point\n"
+            "  limits: {v_max: 1.0, a_max: 0.5, omega_max: 1.0, kappa_max: 1.0, sigma_max: 0.5,\n"
+            "           pitch_max_deg: 25, roll_max_deg: 25}\n"
+            "start: {x: 2.4, y: 12.0, heading_deg: 0, v: 0.0, omega: 0.0}\n"
+            "goal:  {x: 21.15, y: 12.0, heading_deg: 0, v: 0.0, omega: 0.0}\n"
+            "planner: {kind: lattice, time_limit_s: 2.0, lattice_resolution_m: 1.5,\n"
+            "          goal_position_tolerance_m: 1.0}\n");
+  const CliRun r = run({"plan", problem, "--refine", "--out-dir", path("out"), "--json"});
+  ASSERT_EQ(r.status, kExitSuccess) << r.err << r.out;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  ASSERT_GE(json["solutions"].size(), 1u);
+  const nlohmann::json& s = json["solutions"][0];
+  const models::Trajectory candidate = models::readTrajectoryCsv(s["file"].get<std::string>());
+  ASSERT_FALSE(candidate.samples.empty());
+  EXPECT_GT(std::hypot(candidate.samples.back().x - 21.15, candidate.samples.back().y - 12.0), 0.5);
+  EXPECT_EQ(s["refined"]["status"], "converged") << s["refined"].dump();
+  const models::Trajectory refined =
+      models::readTrajectoryCsv(s["refined"]["file"].get<std::string>());
+  ASSERT_FALSE(refined.samples.empty());
+  EXPECT_NEAR(refined.samples.back().x, 21.15, 1e-3);
+  EXPECT_NEAR(refined.samples.back().y, 12.0, 1e-3);
 }
 
 // The PRM's route after 0.5 s is already near the fastest: its refinement converges, reaches the
