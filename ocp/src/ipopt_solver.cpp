@@ -40,9 +40,10 @@ struct RecentPoint {
   double cost;
 };
 
-// Iterations after which a solve whose iterate meets the criteria stops (Ipopt's own test not
-// met by then: it wanders; a solve that converges by Ipopt's test takes fewer).
-constexpr int kWanderingIterations = 100;
+// Ipopt's constr_viol_tol for the criteria: a tenth of the smaller end tolerance.
+double constraintViolationTolerance(const ConvergenceCriteria& c) {
+  return 0.1 * std::min(c.position_m, c.heading_rad);
+}
 
 // The NLP in Ipopt's terms. Every callback works on one cached evaluation keyed on x (Ipopt
 // asks for f, grad f, g and its Jacobian at the same x): one integration per new x. No
@@ -269,7 +270,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
       if (point != nullptr && meetsCriteria(*point, inf_pr, inf_du, ip_cq)) {
         if (!accepted_ || point->cost < accepted_->cost) accepted_ = *point;
         // Wandering: Ipopt has not met its own test long after the criteria were met.
-        if (iter >= kWanderingIterations) return false;  // User_Requested_Stop
+        if (iter >= options_.wandering_iterations) return false;  // User_Requested_Stop
       }
       return true;
     });
@@ -320,10 +321,10 @@ class TrajectoryNlp final : public Ipopt::TNLP {
   bool meetsCriteria(const RecentPoint& point, double inf_pr, double inf_du,
                      Ipopt::IpoptCalculatedQuantities* ip_cq) const {
     const ConvergenceCriteria& c = options_.criteria;
-    const double constr_viol_tol = 0.1 * std::min(c.position_m, c.heading_rad);
     if (!(point.terminal_error.head<2>().norm() <= c.position_m) ||
-        !(std::abs(point.terminal_error.z()) <= c.heading_rad) || !(inf_pr <= constr_viol_tol) ||
-        !(inf_du <= c.lagrangian_gradient) || ip_cq == nullptr) {
+        !(std::abs(point.terminal_error.z()) <= c.heading_rad) ||
+        !(inf_pr <= constraintViolationTolerance(c)) || !(inf_du <= c.lagrangian_gradient) ||
+        ip_cq == nullptr) {
       return false;
     }
     return ip_cq->curr_nlp_error() <= c.lagrangian_gradient;
@@ -428,6 +429,9 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
     return finish(SolveStatus::kError, "path_points must be >= 2");
   }
   if (options.max_iterations < 0) return finish(SolveStatus::kError, "max_iterations < 0");
+  if (options.wandering_iterations < 0) {
+    return finish(SolveStatus::kError, "wandering_iterations < 0");
+  }
   if (options.max_final_time_s && !(*options.max_final_time_s > kMinFinalTime &&
                                     *options.max_final_time_s >= q0(model.finalTimeIndex()))) {
     return finish(SolveStatus::kError, "max_final_time_s must be above 1e-3 s and the guess's t_f");
@@ -447,7 +451,7 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   Ipopt::OptionsList& ipopt = *app->Options();
   const ConvergenceCriteria& criteria = options.criteria;
-  const double constr_viol_tol = 0.1 * std::min(criteria.position_m, criteria.heading_rad);
+  const double constr_viol_tol = constraintViolationTolerance(criteria);
   detail::IpoptBaseSettings base;
   base.print_level = options.print_level;
   base.max_iterations = options.max_iterations;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <optional>
 
-#include "terratraj/terrain/no_data_band.hpp"
 #include "terratraj/terrain/tangent_plane_patch.hpp"
 
 namespace terratraj::search {
@@ -68,10 +67,7 @@ const char* extensionStatusName(ExtensionStatus status) {
 
 ExtensionIntegrator::ExtensionIntegrator(const PlanningProblem& problem,
                                          const IntegrationSettings& settings)
-    : problem_(&problem),
-      settings_(settings),
-      steering_(problem.limits),
-      near_no_data_(terrain::noDataBand(*problem.map, problem.vehicle->surface().stencilReach())) {}
+    : problem_(&problem), settings_(settings), steering_(problem.limits) {}
 
 models::TrajectorySample trajectorySample(const PathPoint& point, double t0) {
   models::TrajectorySample sample;
@@ -117,9 +113,6 @@ bool ExtensionIntegrator::segmentBlocked(const Eigen::Vector2d& a, const Eigen::
   const auto blocked = [&](terrain::CellIndex c) {
     if (!geometry.isValid(c)) return true;
     if (std::isnan(map.elevation()(c))) return true;
-    if (!near_no_data_.empty() && near_no_data_[geometry.linearIndex(c)] != 0) {
-      return true;
-    }
     if (lethal == nullptr) return false;
     const float value = (*lethal)(c);
     return value != 0.0f && !std::isnan(value);

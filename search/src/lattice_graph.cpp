@@ -9,7 +9,6 @@
 
 #include "terratraj/search/goal_region.hpp"
 #include "terratraj/search/primitive_generator.hpp"
-#include "terratraj/terrain/no_data_band.hpp"
 
 namespace terratraj::search {
 namespace {
@@ -71,7 +70,6 @@ LatticeGraph::LatticeGraph(const PlanningProblem& problem, const PrimitiveSet& p
     return;
   }
   sample_spacing_ = options.sample_spacing > 0.0 ? options.sample_spacing : 0.5 * geometry.cell;
-  near_no_data_ = terrain::noDataBand(*problem.map, problem.vehicle->surface().stencilReach());
   const double ratio = lattice.resolution / geometry.cell;
   cells_per_node_ = std::abs(ratio - std::round(ratio)) < 1e-9 * ratio && std::round(ratio) >= 1
                         ? static_cast<int>(std::round(ratio))
@@ -268,17 +266,13 @@ EdgeEvaluation LatticeGraph::evaluate(const LatticeState& s, int e) const {
     for (const Eigen::Vector2i& c : t.cells) {
       const terrain::CellIndex cell{c.y() + dr, c.x() + dc};
       if (!geometry.isValid(cell)) return fail(EdgeStatus::kOffMap);
-      if (map.isLethal(cell) || map.isNoData(cell) || nearNoData(cell)) {
-        return fail(EdgeStatus::kLethal);
-      }
+      if (map.isLethal(cell) || map.isNoData(cell)) return fail(EdgeStatus::kLethal);
     }
   } else {
     for (const Eigen::Vector2d& d : t.dense) {
       const std::optional<terrain::CellIndex> cell = geometry.cellAt(p0 + d);
       if (!cell) return fail(EdgeStatus::kOffMap);
-      if (map.isLethal(*cell) || map.isNoData(*cell) || nearNoData(*cell)) {
-        return fail(EdgeStatus::kLethal);
-      }
+      if (map.isLethal(*cell) || map.isNoData(*cell)) return fail(EdgeStatus::kLethal);
     }
   }
   const models::VehicleLimits& l = problem_->limits;

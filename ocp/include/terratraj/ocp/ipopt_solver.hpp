@@ -37,12 +37,18 @@ struct IpoptOptions {
   std::optional<double> max_final_time_s;
   bool path_constraints = true;  ///< false: terminal equalities only
   int print_level = 0;           ///< Ipopt's print_level, 0 (silent) to 12
+  /// Ipopt's own test is about 100 times tighter than `criteria`: past this many iterations a
+  /// solve stops at the first iterate that meets the criteria (it wanders there), >= 0.
+  int wandering_iterations = 100;
 };
 
 /// Solves the problem of `model` from q0 with Ipopt. `constraints` (may be null: none) are the
 /// vehicle limits imposed at options.path_points points when options.path_constraints is set.
-/// Returns method "ipopt"; status kConverged only when Ipopt reports success (or an acceptable
-/// level) and the final terminal errors are within options.criteria; kMaxIterations for the
+/// Returns method "ipopt"; status kConverged when Ipopt reports success (or an acceptable
+/// level) and the final terminal errors are within options.criteria, or when Ipopt ends
+/// otherwise (or past options.wandering_iterations) after an iterate met the criteria (terminal
+/// errors, path rows, Ipopt's optimality error within lagrangian_gradient): the lowest-cost
+/// such iterate is the answer; kMaxIterations for the
 /// iteration or time limit; kInfeasible when Ipopt detects a locally infeasible problem;
 /// kDiverged otherwise (including a q0 whose integration fails); kError for a q0 of the wrong
 /// size or invalid options. history holds one record per Ipopt iteration (lagrangian_gradient

@@ -9,16 +9,13 @@
 // plane with the curvature varying linearly (exact clothoid arc, by Simpson sub-steps), then
 // enters the next patch at the surface point under its end position, its map heading taken
 // from the direction of motion. Checked at every sample: the map (no data, off the map), the
-// lethal layer and the band around no data where the surface is undefined (every cell the
-// segment between two samples touches, conservatively: the reference point can be placed
-// anywhere between two samples, however coarse the map), pitch and
+// lethal layer (every cell the segment between two samples touches, conservatively), pitch and
 // roll from the vehicle's attitude model (constraints (3), (4)). Speed-dependent constraints
 // become speed caps for the profile: v_max (5), omega_max and kappa_max (1), the curvature
 // rate sigma_max (1), and the tables (v_max by pitch, by roll x curvature); the profile keeps
 // |dv/dt| <= a_max (6). Not allocating once its buffers have grown.
 
 #include <cstddef>
-#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -108,8 +105,7 @@ class ExtensionIntegrator {
   // Attitude at a pose into `point`; false (with `status`) when the vehicle cannot rest there
   // or breaks the pitch / roll limits.
   bool attitudeAt(PathPoint& point, ExtensionStatus& status);
-  // Whether the straight segment between two positions touches a lethal or no-data cell, or a
-  // cell where the surface is undefined (within its stencil's reach of no data).
+  // Whether the straight segment between two positions touches a lethal or no-data cell.
   bool segmentBlocked(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
   // Speed cap [m/s] at a sample from v_max, omega_max and the tables.
   double pointCap(const PathPoint& point) const;
@@ -122,9 +118,6 @@ class ExtensionIntegrator {
   SpeedProfile profile_;
   std::vector<double> segment_lengths_;
   std::vector<double> caps_;
-  // Per cell (row-major), whether the surface is undefined somewhere in it: within the
-  // stencil's reach of a no-data cell. Empty when the map has no no-data cell.
-  std::vector<std::uint8_t> near_no_data_;
 };
 
 }  // namespace terratraj::search

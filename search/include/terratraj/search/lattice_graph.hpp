@@ -162,11 +162,6 @@ class LatticeGraph {
   const EdgeTemplate& edgeTemplate(const LatticeState& s, int e) const;
   // Speed cap at a sample with the given attitude.
   double cap(const SearchSample& sample, double pitch, double roll) const;
-  // Whether the surface is undefined somewhere in `cell` (beside no data).
-  bool nearNoData(terrain::CellIndex cell) const {
-    return !near_no_data_.empty() &&
-           near_no_data_[problem_->map->geometry().linearIndex(cell)] != 0;
-  }
 
   const PlanningProblem* problem_;
   const PrimitiveSet* primitives_;
@@ -180,9 +175,6 @@ class LatticeGraph {
   std::vector<std::vector<EdgeTemplate>> templates_;  // by heading, as the primitives
   std::vector<MotionPrimitive> connectors_;
   std::vector<EdgeTemplate> connector_templates_;
-  // Per cell, whether the surface is undefined somewhere in it (terrain::noDataBand); empty
-  // when the map has no no-data cell. An edge's cells must avoid it as they avoid no data.
-  std::vector<std::uint8_t> near_no_data_;
   mutable models::AttitudeWorkspace workspace_;
   mutable models::AttitudeResult attitude_;
   mutable SpeedProfile profile_;
