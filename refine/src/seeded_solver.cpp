@@ -35,6 +35,9 @@ struct Seed {
   double length = 0.0;  ///< [m]
   ocp::TranscriptionGuess guess;
   double turning = 0.0;  ///< total |heading change| along the path [rad]
+  /// Whether the vehicle, placed along the path at its heading, leaves pitch_max or roll_max
+  /// (with the options' slack) somewhere: the word crosses a slope it would have to go round.
+  bool beyond_limits = false;
 };
 
 // Whether a sampled path crosses a lethal, no-data or off-map cell, or passes where the vehicle
@@ -48,6 +51,25 @@ bool crossesImpassable(const std::vector<ocp::PathPoint2>& points, const terrain
     const std::optional<terrain::CellIndex> cell = map.geometry().cellAt({p.x, p.y});
     if (!cell || map.isNoData(*cell) || map.isLethal(*cell)) return true;
     if (vehicle.compute({p.x, p.y, p.heading}, workspace, placed) != models::AttitudeStatus::kOk) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// Whether `vehicle` placed along `points` (at each point's heading) leaves the pitch or roll
+// limits by more than `slack` (relative) somewhere. `workspace` is the caller's.
+bool leavesAttitudeLimits(const std::vector<ocp::PathPoint2>& points,
+                          const models::TerrainFollowingModel& vehicle,
+                          const models::VehicleLimits& limits, double slack,
+                          models::AttitudeWorkspace& workspace) {
+  models::AttitudeResult placed;
+  for (const ocp::PathPoint2& p : points) {
+    if (vehicle.compute({p.x, p.y, p.heading}, workspace, placed) != models::AttitudeStatus::kOk) {
+      continue;
+    }
+    if (std::abs(placed.attitude.pitch) > (1.0 + slack) * limits.pitch_max ||
+        std::abs(placed.attitude.roll) > (1.0 + slack) * limits.roll_max) {
       return true;
     }
   }
@@ -92,9 +114,11 @@ std::vector<Seed> dubinsSeeds(const models::TerrainFollowingModel& vehicle,
          path.word == ocp::DubinsWord::kLSR || path.word == ocp::DubinsWord::kRSL)
             ? (path.lengths[0] + path.lengths[2]) / path.radius
             : path.length() / path.radius;
+    const bool beyond = map != nullptr && leavesAttitudeLimits(points, vehicle, problem.limits,
+                                                               options.seed_limit_slack, workspace);
     seeds.push_back({std::string("dubins ") + ocp::dubinsWordName(path.word) + " (" +
                          formatLength(path.length()) + " m)",
-                     path.length(), std::move(*guess), turning});
+                     path.length(), std::move(*guess), turning, beyond});
   }
   return seeds;
 }
@@ -348,32 +372,45 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
   } else {
     int blocked = 0;
     const std::vector<Seed> seeds = dubinsSeeds(vehicle, problem, map, options, blocked);
-    double shortest = seeds.empty() ? 0.0 : seeds.front().length;
-    for (const Seed& seed : seeds) {
-      if (!best.attempts.empty()) {
-        if (deadline.over()) break;
-        const bool failed = best.status != ocp::SolveStatus::kConverged;
-        if (!failed && seed.length > options.retry_length_ratio * shortest) break;
+    const double shortest = seeds.empty() ? 0.0 : seeds.front().length;
+    const auto tryWords = [&](bool beyond_limits) {
+      for (const Seed& seed : seeds) {
+        if (seed.beyond_limits != beyond_limits) continue;
+        if (!best.attempts.empty()) {
+          if (deadline.over()) break;
+          const bool failed = best.status != ocp::SolveStatus::kConverged;
+          if (!failed && seed.length > options.retry_length_ratio * shortest) break;
+        }
+        const Clock::time_point t0 = Clock::now();
+        record(attempt(vehicle, problem, map, options, &seed, deadline.left()), t0);
+        if (options.method == CoreMethod::kAuto && best.status != ocp::SolveStatus::kConverged &&
+            !deadline.over()) {
+          bridgeThroughIpopt(seed);
+        }
       }
-      const Clock::time_point t0 = Clock::now();
-      record(attempt(vehicle, problem, map, options, &seed, deadline.left()), t0);
-      if (options.method == CoreMethod::kAuto && best.status != ocp::SolveStatus::kConverged &&
-          !deadline.over()) {
-        bridgeThroughIpopt(seed);
-      }
-    }
-    // No word converged (obstacles in the way of the words, or, for the transcriptions,
-    // terrain the words cross badly): a search seed, whose route follows the terrain within
-    // the limits.
+    };
+    // The words within the attitude limits first; the words across slopes beyond them after
+    // the search seed (an optimiser started across a slope may wander far before it finds the
+    // way round, which the search's route already follows).
+    tryWords(false);
+    const bool steep = std::any_of(seeds.begin(), seeds.end(),
+                                   [](const Seed& seed) { return seed.beyond_limits; });
+    // No word converged (obstacles or slopes in the way of the words, or, for the
+    // transcriptions, terrain the words cross badly): a search seed, whose route follows the
+    // terrain within the limits.
     if (best.status != ocp::SolveStatus::kConverged && map != nullptr &&
-        options.search_time_s > 0.0 && (seeds.empty() || blocked > 0 || transcription) &&
+        options.search_time_s > 0.0 && (seeds.empty() || blocked > 0 || steep || transcription) &&
         !deadline.over()) {
       const Clock::time_point t0 = Clock::now();
-      const std::string why = blocked > 0 && seeds.empty()
-                                  ? "every Dubins word crosses an impassable cell or no data"
-                                  : "no Dubins word gave a verified trajectory";
+      const std::string why =
+          blocked > 0 && seeds.empty() ? "every Dubins word crosses an impassable cell or no data"
+          : std::all_of(seeds.begin(), seeds.end(),
+                        [](const Seed& seed) { return seed.beyond_limits; })
+              ? "every Dubins word crosses slopes beyond the pitch or roll limits"
+              : "no Dubins word gave a verified trajectory";
       record(solveFromSearch(vehicle, problem, *map, options, deadline.left(), why), t0);
     }
+    if (best.status != ocp::SolveStatus::kConverged && !deadline.over()) tryWords(true);
     if (best.attempts.empty()) {
       best.status = ocp::SolveStatus::kInfeasible;
       best.reason =

@@ -10,6 +10,7 @@
 
 #include "../search/lattice_fixtures.hpp"
 #include "../search/search_fixtures.hpp"
+#include "../terrain/test_maps.hpp"
 #include "terratraj/refine/candidate_refiner.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/trajectory_checker.hpp"
@@ -216,6 +217,23 @@ TEST(CandidateRefiner, AWigglyCandidateStartsFromItsShortcut) {
   EXPECT_GT(r.guess_shortcut_m, 3.0);
   EXPECT_GT(r.coarse_intervals, 0);
   EXPECT_LT(r.costRatio(), 0.8);
+}
+
+// The shortcut guess holds the pitch and roll limits the candidate held: a candidate round a
+// ridge (flanks of 50 deg, limits 0.45 rad) through its gap is not cut straight across it
+// (that cut would be 10 m shorter; on the moon DEM such a guess made collocation wander
+// to a 368 m, infeasible end).
+TEST(CandidateRefiner, TheShortcutDoesNotCrossSlopesBeyondTheLimits) {
+  terrain::ElevationMap map = testing::flatMap(64, 96);  // 24 m x 16 m
+  terrain::testing::raiseRidge(map, 12.0, 2.0, 1.0, 10.5, 2.0);
+  auto world = testing::worldOn(std::move(map), {3.0, 4.0}, {21.0, 4.0});
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  const ReferenceFrames frames = framesOf(*world);
+  const CandidateRefiner refiner(world->problem, bvp, frames);
+  const RefinementResult r =
+      refiner.refine(xyPath({{3.0, 4.0}, {10.0, 14.0}, {14.0, 14.0}, {21.0, 4.0}}));
+  EXPECT_LT(r.guess_shortcut_m, 3.0);
+  expectSound(r, world->problem, frames);
 }
 
 // A candidate that drives its path about as fast as the limits allow (here a refined

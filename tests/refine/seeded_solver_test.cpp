@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "../terrain/test_maps.hpp"
 #include "terratraj/bench/robustness_sets.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/ocp/dubins_path.hpp"
@@ -204,6 +205,39 @@ TEST_F(SeededSolverTest, NoDataBesideTheWordsLeavesItToTheSearchSeed) {
     EXPECT_TRUE(surface_.height({row.x, row.y}).has_value()) << row.x << ", " << row.y;
   }
   expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);
+}
+
+// A ridge steeper than the pitch and roll limits across every Dubins word, with a gap to the
+// north (the moon DEM's slopes in small): the words are left until after the search seed,
+// whose route goes round; started across the slope, collocation wandered (moon, 57 m: 60 s,
+// not converged, versus 1.1 s from the search seed). The attitude along the result is
+// re-computed here, row by row.
+TEST_F(SeededSolverTest, WordsAcrossSlopesBeyondTheLimitsComeAfterTheSearchSeed) {
+  terrain::testing::raiseRidge(map_, 15.0, 2.0, 1.0, 18.0, 2.0);  // 50 deg flanks
+  ocp::BoundaryValueProblem problem;
+  problem.start = {8.0, 8.0, 0.0, 0.0, 0.0};
+  problem.goal = {22.0, 8.0, 0.0, 0.0, 0.0};
+  problem.limits = sets::roverLimits();
+  const SeededSolution s = solve(problem, CoreMethod::kAuto);
+  ASSERT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
+  ASSERT_FALSE(s.attempts.empty());
+  EXPECT_NE(s.attempts.front().seed.find("search"), std::string::npos) << s.attempts.front().seed;
+  expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);
+  models::AttitudeWorkspace workspace;
+  models::AttitudeResult placed;
+  const double slack = 1.0 + 1e-3;
+  for (const models::TrajectorySample& row : s.verified.trajectory.samples) {
+    ASSERT_EQ(vehicle_.compute({row.x, row.y, row.heading}, workspace, placed),
+              models::AttitudeStatus::kOk);
+    EXPECT_LE(std::abs(placed.attitude.pitch), problem.limits.pitch_max * slack) << row.t;
+    EXPECT_LE(std::abs(placed.attitude.roll), problem.limits.roll_max * slack) << row.t;
+  }
+  // It went round: north of the gap.
+  double north = 0.0;
+  for (const models::TrajectorySample& row : s.verified.trajectory.samples) {
+    north = std::max(north, row.y);
+  }
+  EXPECT_GT(north, 18.0);
 }
 
 }  // namespace

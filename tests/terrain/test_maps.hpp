@@ -1,6 +1,7 @@
 #pragma once
 // Small maps shared by the terrain tests.
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -43,6 +44,24 @@ inline ElevationMap planeMap(int rows, int cols, double cell, double a, double b
     }
   }
   return map;
+}
+
+/// Raises on `map` a ridge along x = `x0` [m], `height` [m] high with a Gaussian cross-section
+/// of standard deviation `width` [m] (flanks up to 0.61 height / width steep), from the map's
+/// southern edge to `gap_y` [m], where it fades out over `fade` [m] (smoothstep): north of
+/// gap_y + fade the map is as it was, a gap to go round by.
+inline void raiseRidge(ElevationMap& map, double x0, double height, double width, double gap_y,
+                       double fade) {
+  const GridGeometry& g = map.geometry();
+  for (int r = 0; r < g.rows; ++r) {
+    for (int c = 0; c < g.cols; ++c) {
+      const Eigen::Vector2d p = g.cellCenter({r, c});
+      const double t = std::clamp((p.y() - gap_y) / fade, 0.0, 1.0);
+      const double along = 1.0 - t * t * (3.0 - 2.0 * t);
+      const double across = std::exp(-0.5 * std::pow((p.x() - x0) / width, 2));
+      map.elevation()(r, c) += static_cast<float>(height * across * along);
+    }
+  }
 }
 
 /// Path of a file in ../shared/data.

@@ -4,9 +4,11 @@
 //
 // Seeds (solveSeeded's `initial_guess: auto`): the Dubins words between start and goal with the
 // vehicle's turning radius (ocp::dubinsPaths), shortest first, each time-parametrised under
-// v_max, a_max and omega_max (ocp::guessFromPath); when every word crosses an impassable cell, a
-// search seed: the kinodynamic PRM's first solutions, refined in their homotopy class
-// (refine::CandidateRefiner). `initial_guess: flat` keeps 004's flat-ground heuristic alone (the
+// v_max, a_max and omega_max (ocp::guessFromPath); when no word gives a verified trajectory (or
+// none can be tried: every word crosses an impassable cell), a search seed: the kinodynamic
+// PRM's first solution, refined in its homotopy class (refine::CandidateRefiner). A word that
+// crosses slopes beyond the pitch or roll limits (`seed_limit_slack`) is tried after the search
+// seed, not before it. `initial_guess: flat` keeps 004's flat-ground heuristic alone (the
 // paper's behaviour).
 //
 // Solvers: shooting / collocation start from a seed's trajectory; the parametric methods
@@ -78,6 +80,9 @@ struct SeededSolveOptions {
   /// quasi-Newton iterations: more, and cheaper, than newton's).
   std::optional<int> ipopt_max_iterations;
   double seed_spacing_m = 0.1;  ///< samples of a seed path [m], > 0
+  /// A word along which the vehicle (at the word's heading) leaves pitch_max or roll_max by
+  /// more than this (relative, >= 0) is tried after the search seed, not before it.
+  double seed_limit_slack = 0.1;
   /// Search seed: the PRM's budget [s] when every word crosses an impassable cell (0: none).
   double search_time_s = 1.0;
   std::uint64_t search_seed = 1;  ///< the PRM's random seed
