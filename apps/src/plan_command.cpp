@@ -34,16 +34,6 @@ namespace terratraj::apps {
 
 using bench::jsonNumber;
 
-namespace {
-
-// The lattice spacing: the problem's, else the multiple of the map cell nearest 0.5 m.
-double latticeResolution(const ProblemSpec& problem, const terrain::GridGeometry& geometry) {
-  if (problem.planner.lattice_resolution_m) return *problem.planner.lattice_resolution_m;
-  return geometry.cell * std::max(1.0, std::round(0.5 / geometry.cell));
-}
-
-}  // namespace
-
 void checkLatticeGoal(const ProblemSpec& problem, const search::PlanningProblem& query) {
   search::LatticeSpec lattice;
   lattice.resolution = latticeResolution(problem, query.map->geometry());
@@ -54,7 +44,7 @@ void checkLatticeGoal(const ProblemSpec& problem, const search::PlanningProblem&
   const Eigen::Vector2d cells = (goal - start) / lattice.resolution;
   const Eigen::Vector2d nearest =
       start + lattice.resolution * Eigen::Vector2d(std::round(cells.x()), std::round(cells.y()));
-  const double position_tolerance = problem.planner.goal_position_tolerance_m;
+  const double position_tolerance = query.goal.position_tolerance;
   if ((nearest - goal).norm() > position_tolerance) {
     throw InputError(problem.source_file.string() + ": planner.goal_position_tolerance_m: " +
                      formatNumber(position_tolerance) + " m holds no lattice position (spacing " +

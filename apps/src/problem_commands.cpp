@@ -130,7 +130,7 @@ nlohmann::json problemJson(const ProblemSpec& problem, const ProblemScene& scene
         {"seed", problem.planner.seed},
         {"homotopy_classes", problem.planner.homotopy_classes},
         {"frame_radius_m", problem.planner.frame_radius_m},
-        {"goal_position_tolerance_m", problem.planner.goal_position_tolerance_m},
+        {"goal_position_tolerance_m", goalPositionTolerance(problem, scene.map().geometry())},
         {"goal_heading_tolerance_rad", problem.planner.goal_heading_tolerance},
         {"goal_speed_tolerance", problem.planner.goal_speed_tolerance}}},
   };

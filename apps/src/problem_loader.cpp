@@ -359,8 +359,8 @@ PlannerSpec parsePlanner(const Context& ctx, const Field& field) {
   map.readIntInto("homotopy_classes", kMinHomotopyClasses, kMaxHomotopyClasses,
                   planner.homotopy_classes);
   map.readNumberInto("frame_radius_m", Range::positive(), planner.frame_radius_m);
-  map.readNumberInto("goal_position_tolerance_m", Range::positive(),
-                     planner.goal_position_tolerance_m);
+  planner.goal_position_tolerance_m =
+      map.optionalNumber("goal_position_tolerance_m", Range::positive());
   map.readAngleInto("goal_heading_tolerance", Range::openInterval(0.0, 360.0, "deg"),
                     planner.goal_heading_tolerance);
   map.readNumberInto("goal_speed_tolerance", Range::positive(), planner.goal_speed_tolerance);

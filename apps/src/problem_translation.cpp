@@ -1,6 +1,7 @@
 #include "terratraj/apps/problem_translation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "message_number.hpp"
@@ -67,12 +68,13 @@ search::PlannerState startState(const ProblemSpec& problem, const BoundaryState&
   return state;
 }
 
-search::GoalRegion goalRegion(const ProblemSpec& problem, const BoundaryState& g) {
+search::GoalRegion goalRegion(const ProblemSpec& problem, const BoundaryState& g,
+                              const terrain::GridGeometry& geometry) {
   search::GoalRegion goal;
   goal.position = {g.x, g.y};
   goal.heading = g.heading;
   goal.v = g.v;
-  goal.position_tolerance = problem.planner.goal_position_tolerance_m;
+  goal.position_tolerance = goalPositionTolerance(problem, geometry);
   goal.heading_tolerance = problem.planner.goal_heading_tolerance;
   goal.speed_tolerance = problem.planner.goal_speed_tolerance;
   return goal;
@@ -168,13 +170,27 @@ search::PlanningProblem planningProblem(const ProblemSpec& problem, const Proble
   search::PlanningProblem query(scene.map(), scene.vehicle());
   query.limits = problem.vehicle.limits;
   query.start = startState(problem, scene.start());
-  query.goal = goalRegion(problem, scene.goal());
+  query.goal = goalRegion(problem, scene.goal(), scene.map().geometry());
   query.pitch_table = scene.pitchTable();
   query.roll_curvature_table = scene.rollCurvatureTable();
   if (const std::optional<std::string> error = query.validate()) {
     throw InputError(problem.source_file.string() + ": " + *error);
   }
   return query;
+}
+
+double latticeResolution(const ProblemSpec& problem, const terrain::GridGeometry& geometry) {
+  if (problem.planner.lattice_resolution_m) return *problem.planner.lattice_resolution_m;
+  return geometry.cell * std::max(1.0, std::round(0.5 / geometry.cell));
+}
+
+double goalPositionTolerance(const ProblemSpec& problem, const terrain::GridGeometry& geometry) {
+  if (problem.planner.goal_position_tolerance_m) return *problem.planner.goal_position_tolerance_m;
+  constexpr double kDefault = 0.5;
+  if (problem.planner.kind == PlannerKind::kPrm) return kDefault;
+  const double holding =
+      std::ceil(latticeResolution(problem, geometry) * std::sqrt(0.5) * 100.0) / 100.0;
+  return std::max(kDefault, holding);
 }
 
 search::LatticePlannerOptions latticePlannerOptions(const ProblemSpec& problem) {

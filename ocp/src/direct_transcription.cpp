@@ -292,6 +292,7 @@ struct SingleSolve {
   std::string ipopt_status;
   Eigen::VectorXd x, lambda;
   int iterations = 0;
+  bool time_limit_reached = false;
 };
 
 SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem,
@@ -348,6 +349,8 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
                                                       options.max_iterations, options.time_limit_s);
   out.status = outcome.status;
   out.reason = std::move(outcome.reason);
+  out.time_limit_reached = out.status != SolveStatus::kConverged &&
+                           (adapter->timedOut() || status == Ipopt::Maximum_CpuTime_Exceeded);
   if (out.status != SolveStatus::kConverged && !nlp.message().empty()) {
     out.reason += " (last evaluation: " + nlp.message() + ")";
   }
@@ -534,6 +537,7 @@ TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingMod
       out.ipopt_status = solve.ipopt_status;
       fillSolution(nlp, solve, out);
       out.result.iterations = total_iterations;
+      out.result.time_limit_reached = solve.time_limit_reached;
       if (solve.status != SolveStatus::kConverged) return finish(solve.status, solve.reason);
       if (options.refinement.max_rounds == 0) break;
       const std::optional<std::vector<double>> errors = intervalErrors(model, out);

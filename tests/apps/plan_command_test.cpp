@@ -17,6 +17,7 @@
 #include "cli_run.hpp"
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/apps/problem_loader.hpp"
+#include "terratraj/apps/problem_translation.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/terrain/raster_io.hpp"
 #include "terratraj/terrain/terrain_generator.hpp"
@@ -195,11 +196,35 @@ TEST(PlanProblemKeys, GoalTolerancesAreParsed) {
                                ", goal_position_tolerance_m: 0.3, goal_heading_tolerance_deg: 10, "
                                "goal_speed_tolerance: 0.05"),
                    ".", "inline.yaml");
-  EXPECT_DOUBLE_EQ(problem.planner.goal_position_tolerance_m, 0.3);
+  EXPECT_EQ(problem.planner.goal_position_tolerance_m, 0.3);
   EXPECT_NEAR(problem.planner.goal_heading_tolerance, 10.0 * kRadiansPerDegree, 1e-12);
   EXPECT_DOUBLE_EQ(problem.planner.goal_speed_tolerance, 0.05);
   const ProblemSpec defaults = parseProblem(problemYaml(kHills, kStart, kGoal), ".", "inline.yaml");
-  EXPECT_DOUBLE_EQ(defaults.planner.goal_position_tolerance_m, 0.5);
+  EXPECT_FALSE(defaults.planner.goal_position_tolerance_m.has_value());
+}
+
+// Absent, the goal region's radius is 0.5 m, and for a lattice at least the distance within
+// which every goal has a lattice position: on a 3 m DEM (the gully) its lattice is 3 m and 0.5 m
+// held no lattice position (exit 2 with the defaults).
+TEST(PlanProblemKeys, TheDefaultGoalRadiusHoldsALatticePosition) {
+  ProblemSpec problem = parseProblem(problemYaml(kHills, kStart, kGoal), ".", "inline.yaml");
+  terrain::GridGeometry coarse;
+  coarse.rows = coarse.cols = 50;
+  coarse.cell = 3.0;
+  terrain::GridGeometry fine = coarse;
+  fine.cell = 0.25;
+  EXPECT_DOUBLE_EQ(goalPositionTolerance(problem, coarse), 0.5);  // prm
+  for (const PlannerKind kind : {PlannerKind::kLattice, PlannerKind::kTaeasl}) {
+    problem.planner.kind = kind;
+    EXPECT_DOUBLE_EQ(latticeResolution(problem, coarse), 3.0);
+    EXPECT_DOUBLE_EQ(goalPositionTolerance(problem, coarse), 2.13);
+    EXPECT_DOUBLE_EQ(goalPositionTolerance(problem, fine), 0.5);
+    problem.planner.lattice_resolution_m = 1.0;
+    EXPECT_DOUBLE_EQ(goalPositionTolerance(problem, coarse), 0.71);
+    problem.planner.lattice_resolution_m.reset();
+  }
+  problem.planner.goal_position_tolerance_m = 0.3;
+  EXPECT_DOUBLE_EQ(goalPositionTolerance(problem, coarse), 0.3);
 }
 
 // The lattice planners: one solution (lattice) or one per homotopy class (taeasl), each written,

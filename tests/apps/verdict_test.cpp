@@ -296,8 +296,9 @@ TEST_F(VerdictTest, EveryExitZeroWritesATrajectoryThatPassesTheIndependentCheck)
     for (const nlohmann::json& s : json["solutions"]) {
       EXPECT_EQ(independentCheck(
                     s["file"].get<std::string>(), source + example,
-                    {spec.planner.goal_position_tolerance_m, spec.planner.goal_heading_tolerance,
-                     spec.planner.goal_speed_tolerance}),
+                    // The examples' lattices are 0.5 m: every planner's default radius is 0.5 m.
+                    {spec.planner.goal_position_tolerance_m.value_or(0.5),
+                     spec.planner.goal_heading_tolerance, spec.planner.goal_speed_tolerance}),
                 "")
           << example;
       ++checked;

@@ -15,6 +15,7 @@
 #include "terratraj/ocp/boundary_value_solver.hpp"
 #include "terratraj/ocp/direct_transcription.hpp"
 #include "terratraj/ocp/trajectory_verifier.hpp"
+#include "terratraj/ocp/transcription_solver.hpp"
 #include "terratraj/terrain/clearance_map.hpp"
 #include "terratraj/terrain/terrain_surface.hpp"
 
@@ -573,6 +574,17 @@ TEST(DirectTranscription, FailuresAreStatusesWithIpoptsReason) {
   EXPECT_EQ(stopped.ipopt_status, "Maximum_Iterations_Exceeded");
   EXPECT_EQ(solveDirectTranscription(vehicle, problem, TranscriptionGuess{}, {}).result.status,
             SolveStatus::kError);
+  // Stopped by its time limit: not re-simulated (a wild iterate's re-simulation can take as
+  // long again), the status saying why.
+  TranscriptionSolveOptions limited;
+  limited.time_limit_s = 1e-3;
+  const VerifiedTranscription timed = solveTranscription(vehicle, problem, guess, limited);
+  EXPECT_EQ(timed.status, SolveStatus::kMaxIterations) << timed.reason;
+  EXPECT_TRUE(timed.solution.result.time_limit_reached);
+  EXPECT_NE(timed.reason.find("time limit"), std::string::npos) << timed.reason;
+  EXPECT_FALSE(timed.verified.ok);
+  EXPECT_NE(timed.verified.message.find("not re-simulated"), std::string::npos);
+  EXPECT_FALSE(stopped.result.time_limit_reached);
   // Off the map.
   BoundaryValueProblem off = problem;
   off.goal.x = 40.0;

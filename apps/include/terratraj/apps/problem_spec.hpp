@@ -223,12 +223,13 @@ struct PlannerSpec {
   /// Iteration budget (PRM milestones, lattice expansions), >= 1; absent: none. With it and a
   /// time limit that is not reached, the same seed gives the same files.
   std::optional<int> max_iterations;
-  std::uint64_t seed = 1;                  ///< random seed
-  int homotopy_classes = 3;                ///< taeasl: most distinct classes returned, >= 1
-  double frame_radius_m = 10.0;            ///< taeasl: frame radius [m], > 0
-  double goal_position_tolerance_m = 0.5;  ///< prm: goal region radius [m], > 0
-  double goal_heading_tolerance = 0.35;    ///< prm: goal heading tolerance [rad], > 0
-  double goal_speed_tolerance = 0.1;       ///< prm: goal speed tolerance [m/s], > 0
+  std::uint64_t seed = 1;        ///< random seed
+  int homotopy_classes = 3;      ///< taeasl: most distinct classes returned, >= 1
+  double frame_radius_m = 10.0;  ///< taeasl: frame radius [m], > 0
+  /// Goal region radius [m], > 0; absent: goalPositionTolerance() (problem_translation.hpp).
+  std::optional<double> goal_position_tolerance_m;
+  double goal_heading_tolerance = 0.35;  ///< prm: goal heading tolerance [rad], > 0
+  double goal_speed_tolerance = 0.1;     ///< prm: goal speed tolerance [m/s], > 0
   // Lattice planners (lattice, taeasl); docs/planning.md.
   /// Lattice spacing [m], > 0 (a multiple of the map cell is fastest); absent: the multiple of
   /// the cell nearest 0.5 m.

@@ -55,6 +55,16 @@ refine::SeededSolveOptions seededSolveOptions(const ProblemSpec& problem,
 /// the key when it is invalid.
 search::PlanningProblem planningProblem(const ProblemSpec& problem, const ProblemScene& scene);
 
+/// The lattice spacing of the lattice planners [m]: planner.lattice_resolution_m, else the
+/// multiple of the map cell nearest 0.5 m (at least one cell).
+double latticeResolution(const ProblemSpec& problem, const terrain::GridGeometry& geometry);
+
+/// The goal region's radius [m]: planner.goal_position_tolerance_m; absent, 0.5 m, and for the
+/// lattice planners at least the distance within which every goal has a lattice position
+/// (spacing / sqrt 2, rounded up to the centimetre: 2.13 m on a 3 m DEM's lattice), so the
+/// defaults plan on a coarse map.
+double goalPositionTolerance(const ProblemSpec& problem, const terrain::GridGeometry& geometry);
+
 /// A* / ARA* settings (planner.algorithm, initial_epsilon, epsilon_step).
 search::LatticePlannerOptions latticePlannerOptions(const ProblemSpec& problem);
 

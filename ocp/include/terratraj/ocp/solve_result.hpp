@@ -50,6 +50,9 @@ struct SolveResult {
   double cost = 0.0;                                         ///< J at q (solver's own figure)
   Eigen::Vector3d terminal_error = Eigen::Vector3d::Zero();  ///< c(q) (solver's own figure)
   long integrations = 0;                                     ///< trajectory integrations used
+  /// The solver stopped on its time limit (status not kConverged): what it returns is an
+  /// unfinished iterate.
+  bool time_limit_reached = false;
 };
 
 }  // namespace terratraj::ocp
