@@ -15,10 +15,6 @@ FourWheelAttitudeModel::FourWheelAttitudeModel(const terrain::TerrainSurface& su
   }
 }
 
-double FourWheelAttitudeModel::contactReach() const {
-  return 0.5 * std::hypot(geometry_.wheelbase, geometry_.track);
-}
-
 AttitudeStatus FourWheelAttitudeModel::compute(const PlanarPose& pose,
                                                AttitudeWorkspace& /*workspace*/,
                                                AttitudeResult& result) const {

@@ -1,7 +1,7 @@
 #include "terratraj/models/rocker_bogie_attitude_model.hpp"
 
 #include <Eigen/LU>
-#include <algorithm>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -77,14 +77,6 @@ RockerBogieAttitudeModel::RockerBogieAttitudeModel(const terrain::TerrainSurface
       !(options.max_joint_angle > 0.0) || !(options.max_tilt > 0.0)) {
     throw std::invalid_argument("rocker_bogie: invalid solver options");
   }
-}
-
-double RockerBogieAttitudeModel::contactReach() const {
-  const RockerBogieGeometry& g = geometry_;
-  const double in_rocker =
-      std::max(g.rear_wheel.norm(),
-               g.bogie_pivot.norm() + std::max(g.front_wheel.norm(), g.middle_wheel.norm()));
-  return std::hypot(g.half_track, in_rocker) + g.wheel_radius;
 }
 
 Eigen::Matrix<double, 3, 6> RockerBogieAttitudeModel::wheelCentresInBody(

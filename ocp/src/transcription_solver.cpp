@@ -73,8 +73,8 @@ std::optional<std::string> validateTranscriptionSolveOptions(const Transcription
     return "max_intervals (" + std::to_string(o.max_intervals) + ") must be >= intervals (" +
            std::to_string(o.transcription.intervals) + ")";
   }
-  if (!std::isfinite(o.clearance_floor)) {
-    return "clearance_floor must be a finite number";
+  if (!(o.clearance_floor >= 0.0) || !std::isfinite(o.clearance_floor)) {
+    return "clearance_floor must be a finite number >= 0";
   }
   if (o.time_limit_s && !(*o.time_limit_s >= 0.0)) return "time_limit_s must be >= 0";
   return validateTranscriptionOptions(o.transcription);

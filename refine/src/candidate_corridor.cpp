@@ -1,23 +1,15 @@
 // CandidateRefiner's geometry of a candidate: the corridor around it (a map whose cells outside
-// it are lethal, for the corridor retry), its shortcut path (for wiggly candidates), the guess
-// the optimiser starts from, and the clearance row that keeps it off impassable cells.
+// it are lethal, for the corridor retry) and its shortcut path (for wiggly candidates).
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <optional>
 #include <vector>
 
-#include "polyline.hpp"
-#include "terratraj/ocp/transcription_guess.hpp"
 #include "terratraj/refine/candidate_refiner.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
 
 namespace terratraj::refine {
 namespace {
-
-using detail::polyline;
-using detail::polylineLength;
 
 // Shortcutting: the candidate is resampled this often [m] and a straight segment may skip at
 // most this many samples.
@@ -114,83 +106,6 @@ std::vector<Eigen::Vector2d> CandidateRefiner::shortcutPath(
     i = best;
   }
   return out;
-}
-
-bool CandidateRefiner::placeable(const ocp::TranscriptionGuess& guess, int samples) const {
-  models::AttitudeWorkspace workspace;
-  models::AttitudeResult placed;
-  const auto at = [&](const ocp::PointVector& w) {
-    return problem_->vehicle->compute({w(0), w(1), w(2)}, workspace, placed) ==
-           models::AttitudeStatus::kOk;
-  };
-  for (const ocp::PointVector& w : guess.points) {
-    if (!at(w)) return false;
-  }
-  const double duration = guess.finalTime();
-  for (int k = 1; k < samples && !guess.points.empty(); ++k) {
-    if (!at(guess.at(duration * k / samples))) return false;
-  }
-  return true;
-}
-
-ocp::TranscriptionGuess CandidateRefiner::startingGuess(const TrajectoryFigures& before,
-                                                        const ocp::TranscriptionGuess& candidate,
-                                                        RefinementResult& out) const {
-  ocp::TranscriptionGuess guess = candidate;
-  // A wiggly candidate (a PRM's first solution, with loops) starts the optimiser from its
-  // shortcut path instead, when that keeps the class: loops and detours cost iterations and
-  // can trap it.
-  if (options_.shortcut_clearance_m > 0.0) {
-    const std::vector<Eigen::Vector2d> shortcut =
-        shortcutPath(polyline(out.candidate), options_.shortcut_clearance_m);
-    const double length = polylineLength(shortcut);
-    if (length < options_.shortcut_gain * before.length_m && classOf(shortcut) == before.homotopy) {
-      Expected<ocp::TranscriptionGuess> shorter =
-          ocp::guessFromPath(shortcut, *bvp_, options_.guess_spacing_m);
-      if (shorter && placeable(*shorter)) {
-        guess = std::move(*shorter);
-        out.guess_shortcut_m = before.length_m - length;
-      }
-    }
-  }
-  // A slow candidate whose shortcut is not used (a PRM's first solution on a forest: its path
-  // near the shortest, its speed profile slow) starts from its own path re-timed by the
-  // forward-backward speed pass when that is faster: an evenly sampled, consistent guess (the
-  // PRM's own samples change speed at every milestone). Forest PRM first solutions: 54-142 ->
-  // 19-68 coarse iterations, the same optima (bench refine).
-  if (out.guess_shortcut_m == 0.0 && !(guess.finalTime() <= nearOptimalTime(before.length_m))) {
-    if (Expected<ocp::TranscriptionGuess> retimed =
-            ocp::guessFromPath(polyline(out.candidate), *bvp_, options_.guess_spacing_m)) {
-      if (retimed->finalTime() < guess.finalTime() && placeable(*retimed)) {
-        out.guess_retimed_s = guess.finalTime() - retimed->finalTime();
-        guess = std::move(*retimed);
-      }
-    }
-  }
-  return guess;
-}
-
-void CandidateRefiner::holdClearance(const TrajectoryFigures& before,
-                                     const terrain::ClearanceMap& clearance,
-                                     ocp::TranscriptionSolveOptions& solve,
-                                     RefinementResult& out) const {
-  // The clearance constraint keeps the optimiser off impassable cells; a trajectory that clips
-  // one between its points is solved again with at least half a cell of clearance (capped by
-  // min_clearance_m): the bilinear distance transform rounds a lethal cell's corners.
-  // Never above the clearance of the exact start and goal: a start beside no data (a coarse
-  // map, where the surface is undefined a cell and a half out) or in a concave corner may have
-  // none, or a little less than none, and the row would be infeasible there.
-  if (!clearance_.hasImpassableCells()) return;
-  const auto clearanceAt = [&](const ocp::VehicleState& s) {
-    const std::optional<terrain::Clearance> c = clearance.at({s.x, s.y});
-    return c ? c->distance : std::numeric_limits<double>::infinity();
-  };
-  const double ends = std::min(clearanceAt(bvp_->start), clearanceAt(bvp_->goal));
-  const double lowest = std::min(before.min_clearance_m, ends);
-  out.clearance_used_m = lowest > 0.0 ? std::min(options_.min_clearance_m, 0.5 * lowest) : lowest;
-  solve.transcription.model.clearance = {&clearance, out.clearance_used_m};
-  solve.clearance_floor = std::min(
-      {options_.min_clearance_m, 0.5 * problem_->map->geometry().cell, std::max(ends, lowest)});
 }
 
 }  // namespace terratraj::refine

@@ -236,27 +236,6 @@ TEST(CandidateRefiner, TheShortcutDoesNotCrossSlopesBeyondTheLimits) {
   expectSound(r, world->problem, frames);
 }
 
-// A start beside no data (as on a coarse DEM: the gully's 3 m cells), where the bicubic surface
-// still has a height but a cell of its stencil's reach holds no data: the clearance row holds
-// at the start and the candidate is refined (the whole-cell band beside no data put the start
-// inside it, and Ipopt found the problem locally infeasible).
-TEST(CandidateRefiner, AStartBesideNoDataIsRefined) {
-  terrain::ElevationMap map = testing::flatMap(64, 96);  // 24 m x 16 m
-  for (int row = 20; row <= 44; ++row) {
-    for (int col = 40; col <= 47; ++col) map.elevation()(row, col) = std::nanf("");
-  }
-  // x = 9.55: in cell 38, two cells from the no-data cell 40, its stencil (cells 36-39) clear.
-  auto world = testing::worldOn(std::move(map), {9.55, 8.0}, {3.0, 8.0});
-  world->problem.start.heading = world->problem.goal.heading = M_PI;
-  ASSERT_TRUE(world->surface.height({9.55, 8.0}).has_value());
-  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
-  const ReferenceFrames frames = framesOf(*world);
-  const CandidateRefiner refiner(world->problem, bvp, frames);
-  const RefinementResult r = refiner.refine(xyPath({{9.55, 8.0}, {6.0, 8.0}, {3.0, 8.0}}));
-  expectSound(r, world->problem, frames);
-  EXPECT_GE(r.clearance_used_m, 0.0);
-}
-
 // A candidate that drives its path about as fast as the limits allow (here a refined
 // trajectory, refined again) starts Ipopt's barrier warm and needs fewer iterations than with
 // the adaptive barrier, to the same trajectory; refine.warm_start_time_ratio decides. A slow

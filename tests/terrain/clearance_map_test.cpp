@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "common/finite_difference.hpp"
-#include "terratraj/terrain/terrain_surface.hpp"
+#include "terratraj/terrain/no_data_band.hpp"
 
 namespace terratraj::terrain {
 namespace {
@@ -32,8 +32,7 @@ TEST(ClearanceMap, MatchesBruteForceDistances) {
       for (const CellIndex& o : obstacles) {
         best = std::min(best, g.cell * std::hypot(r - o.row, c - o.col));
       }
-      EXPECT_NEAR(clearance.at(g.cellCenter({r, c}))->distance, best - 0.5 * g.cell, 1e-9)
-          << r << ", " << c;
+      EXPECT_NEAR(clearance.cellClearance({r, c}), best - 0.5 * g.cell, 1e-9) << r << ", " << c;
     }
   }
 }
@@ -56,60 +55,26 @@ TEST(ClearanceMap, GradientMatchesDifferencesAndOffMapIsEmpty) {
   EXPECT_DOUBLE_EQ(open.at({3.0, 3.0})->distance, 50.0);
 }
 
-// Beside no data, given a surface's stencil reach, the clearance measures from where that
-// surface has no height (bicubic: a 4 x 4 stencil, so the square two cells round the no-data
-// cell's centre), not from a band of whole cells: a start on a coarse map, one cell and a bit
-// from no data, has a height and a clearance of zero or more (the whole-cell band put it
-// inside, and the refiner's clearance row made the problem infeasible at the start).
-TEST(ClearanceMap, BesideNoDataMeasuresFromWhereTheSurfaceIsUndefined) {
+// The band beside no data where a surface is undefined: the cells within `reach` of a no-data
+// cell; a clearance map given the reach measures from the band, not from the no-data cell.
+TEST(NoDataBand, IsTheSquareWithinReachAndTheClearanceStartsAtIt) {
   ElevationMap map = mapWithLethalCells({});
+  EXPECT_TRUE(noDataBand(map, 2).empty());
   map.elevation()(10, 20) = std::nanf("");
+  const std::vector<std::uint8_t> band = noDataBand(map, 2);
   const GridGeometry& g = map.geometry();
-  const double h = g.cell;
-  const TerrainSurface surface(map, Interpolation::kBicubic);
-  const ClearanceMap plain(map);
-  const ClearanceMap beside(map, 1e3, surface.stencilReach());
-  // The undefined square: the no-data cell's centre (10.25, 5.25) +- 2 cells.
-  const Eigen::Vector2d low(10.25 - 2 * h, 5.25 - 2 * h), high(10.25 + 2 * h, 5.25 + 2 * h);
-  int defined = 0, undefined = 0;
-  for (double x = 7.013; x <= 13.5; x += 0.05) {
-    for (double y = 2.013; y <= 8.5; y += 0.05) {
-      const Eigen::Vector2d p(x, y);
-      const Eigen::Vector2d nearest = p.cwiseMax(low).cwiseMin(high);
-      const double outside = (p - nearest).norm();
-      const bool inside = outside == 0.0;
-      ASSERT_EQ(surface.height(p).has_value(), !inside) << x << ", " << y;
-      const double c = beside.at(p)->distance;
-      if (inside) {
-        ++undefined;
-        const double depth = std::min((p - low).minCoeff(), (high - p).minCoeff());
-        if (depth > 0.5 * h) {
-          EXPECT_LT(c, 0.0) << x << ", " << y;
-        }
-      } else {
-        ++defined;
-        EXPECT_NEAR(c, outside, 0.4 * h) << x << ", " << y;  // corners rounded
-        if (outside > 0.5 * h) {
-          EXPECT_GT(c, 0.0) << x << ", " << y;
-        }
-      }
-      EXPECT_LE(c, plain.at(p)->distance + 1e-12) << x << ", " << y;
+  ASSERT_EQ(band.size(), g.cellCount());
+  for (int r = 0; r < g.rows; ++r) {
+    for (int c = 0; c < g.cols; ++c) {
+      const bool inside = std::abs(r - 10) <= 2 && std::abs(c - 20) <= 2;
+      EXPECT_EQ(band[g.linearIndex({r, c})] != 0, inside) << r << ", " << c;
     }
   }
-  EXPECT_GT(defined, 1000);
-  EXPECT_GT(undefined, 1000);
-  // Exact at the nodes beside the square, and the gradient is the differences'.
-  EXPECT_NEAR(beside.at({11.75, 5.5})->distance, 0.5, 1e-9);
-  EXPECT_NEAR(plain.at({11.75, 5.25})->distance, 1.5 - 0.5 * h, 1e-9);
-  for (const Eigen::Vector2d& p : {Eigen::Vector2d(11.9, 5.6), Eigen::Vector2d(8.3, 3.1)}) {
-    const std::optional<Clearance> c = beside.at(p);
-    ASSERT_TRUE(c.has_value());
-    const auto distance = [&](const Eigen::VectorXd& at) {
-      return Eigen::VectorXd::Constant(1, beside.at(Eigen::Vector2d(at))->distance);
-    };
-    EXPECT_TRUE(terratraj::testing::matchesFiniteDifferences(
-        c->gradient.transpose(), terratraj::testing::centralDifferences(distance, p, 1e-6), 1e-6));
-  }
+  const ClearanceMap plain(map);
+  const ClearanceMap banded(map, 1e3, 2);
+  EXPECT_NEAR(plain.cellClearance({10, 22}), 2.0 * g.cell - 0.5 * g.cell, 1e-9);
+  EXPECT_LE(banded.cellClearance({10, 22}), 0.0);
+  EXPECT_NEAR(banded.cellClearance({10, 25}), 3.0 * g.cell - 0.5 * g.cell, 1e-9);
 }
 
 }  // namespace

@@ -31,8 +31,6 @@ class FourWheelAttitudeModel final : public TerrainFollowingModel {
                          AttitudeResult& result) const override;
   const char* name() const override { return "four_wheel"; }
   const terrain::TerrainSurface& surface() const override { return surface_; }
-  /// Half the diagonal of the wheel rectangle [m].
-  double contactReach() const override;
   const FourWheelGeometry& geometry() const { return geometry_; }
 
  private:

@@ -54,9 +54,6 @@ class RockerBogieAttitudeModel final : public TerrainFollowingModel {
                          AttitudeResult& result) const override;
   const char* name() const override { return "rocker_bogie"; }
   const terrain::TerrainSurface& surface() const override { return surface_; }
-  /// A bound over every rocker and bogie angle: the farthest wheel centre from the rocker's
-  /// pivot (through the bogie's pivot), beside the half track, plus the wheel radius [m].
-  double contactReach() const override;
   const RockerBogieGeometry& geometry() const { return geometry_; }
 
   /// Wheel centres in the body frame for a suspension configuration (rho, beta1, beta2), in the

@@ -41,10 +41,6 @@ class TerrainFollowingModel {
   virtual const char* name() const = 0;
   /// The surface the model rests on.
   virtual const terrain::TerrainSurface& surface() const = 0;
-  /// How far from the reference point, in the plane, the model reads the surface, at any
-  /// heading and suspension configuration [m] (a bound on its contacts): compute() can succeed
-  /// only where the surface is defined within this distance. 0 for a point.
-  virtual double contactReach() const { return 0.0; }
 };
 
 }  // namespace terratraj::models

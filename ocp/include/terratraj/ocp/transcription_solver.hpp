@@ -47,8 +47,7 @@ struct TranscriptionSolveOptions {
   TranscriptionBarrier resolve_barrier = TranscriptionBarrier::kAdaptive;
   int max_intervals = 800;  ///< doubling stops here, >= transcription.intervals
   /// A re-simulation over a lethal cell raises the clearance constraint (when
-  /// transcription.model.clearance has a map) to this [m], finite (at or below the
-  /// constraint's own value: never raised).
+  /// transcription.model.clearance has a map) to this [m], >= 0.
   double clearance_floor = 0.0;
   std::optional<double> time_limit_s;       ///< wall clock of all rounds [s], >= 0
   const std::atomic<bool>* stop = nullptr;  ///< set from outside (SIGINT): no further round

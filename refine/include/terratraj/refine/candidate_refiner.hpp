@@ -36,7 +36,6 @@
 #include "terratraj/ocp/direct_transcription.hpp"
 #include "terratraj/ocp/solve_result.hpp"
 #include "terratraj/ocp/trajectory_verifier.hpp"
-#include "terratraj/ocp/transcription_solver.hpp"
 #include "terratraj/refine/refinement_options.hpp"
 #include "terratraj/search/planning_problem.hpp"
 #include "terratraj/search/reference_frames.hpp"
@@ -156,10 +155,6 @@ class CandidateRefiner {
   void transcribe(const ocp::TranscriptionGuess& guess, const TrajectoryFigures& before,
                   const terrain::ClearanceMap& clearance, const Deadline& deadline,
                   RefinementResult& out) const;
-  // The clearance row of a transcription on `clearance` (when the map has impassable cells):
-  // into `solve` (its constraint and floor) and out.clearance_used_m.
-  void holdClearance(const TrajectoryFigures& before, const terrain::ClearanceMap& clearance,
-                     ocp::TranscriptionSolveOptions& solve, RefinementResult& out) const;
   // The candidate's cost plus its last point's distance to the exact goal at v_max: what a
   // refinement must not exceed.
   double candidateCostAtGoal(const TrajectoryFigures& before, const RefinementResult& out) const;
@@ -173,10 +168,6 @@ class CandidateRefiner {
   ocp::TranscriptionGuess startingGuess(const TrajectoryFigures& before,
                                         const ocp::TranscriptionGuess& candidate,
                                         RefinementResult& out) const;
-  // Whether the vehicle can be placed at every point of `guess` and at `samples` instants
-  // evenly spread over it (a guess re-timed along a path, or interpolated onto a finer mesh,
-  // swings the footprint at its corners: beside no data, off the surface).
-  bool placeable(const ocp::TranscriptionGuess& guess, int samples = 0) const;
   // The duration under which a guess along a path of `length` [m] counts as near optimal:
   // warm_start_time_ratio x the bang-bang time along it [s].
   double nearOptimalTime(double length) const;
