@@ -274,6 +274,26 @@ std::optional<models::GoalReachability> checkReachability(
       {problem.goal.x, problem.goal.y, problem.goal.heading}, check);
 }
 
+// The flat heuristic (initial_guess flat, or a start already at the goal): for a
+// transcription, from the parametric (newton) flat solution's trajectory, as 004 would have it.
+SeededSolution attemptFlat(const models::TerrainFollowingModel& vehicle,
+                           const ocp::BoundaryValueProblem& problem,
+                           const terrain::ElevationMap* map, const SeededSolveOptions& options,
+                           const ocp::Deadline& deadline) {
+  if (!isTranscription(options.method)) {
+    return attempt(vehicle, problem, map, options, nullptr, deadline.left());
+  }
+  ocp::BoundaryValueOptions flat = options.parametric;
+  flat.method = ocp::BoundaryValueMethod::kNewton;
+  const ocp::BoundaryValueSolution parametric =
+      ocp::solveBoundaryValue(vehicle, problem, flat, map);
+  std::optional<ocp::TranscriptionGuess> guess;
+  if (parametric.verified.ok) guess = guessOrNothing(parametric.verified.trajectory);
+  if (!guess) guess = ocp::TranscriptionGuess{};
+  const Seed seed{"flat heuristic (004) via newton", parametric.verified.length, *guess, 0.0};
+  return attempt(vehicle, problem, map, options, &seed, deadline.left());
+}
+
 }  // namespace
 
 SeededSolution seededSolutionOf(ocp::VerifiedTranscription result, std::string method,
@@ -352,23 +372,8 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
   }
   if (options.initial_guess == InitialGuessKind::kFlat ||
       ocp::startMeetsGoal(problem, options.parametric.criteria)) {
-    if (transcription) {
-      // The flat heuristic for a transcription: the parametric (newton) flat solution's
-      // trajectory, as 004 would have it.
-      ocp::BoundaryValueOptions flat = options.parametric;
-      flat.method = ocp::BoundaryValueMethod::kNewton;
-      const ocp::BoundaryValueSolution parametric =
-          ocp::solveBoundaryValue(vehicle, problem, flat, map);
-      std::optional<ocp::TranscriptionGuess> guess;
-      if (parametric.verified.ok) guess = guessOrNothing(parametric.verified.trajectory);
-      if (!guess) guess = ocp::TranscriptionGuess{};
-      const Seed seed{"flat heuristic (004) via newton", parametric.verified.length, *guess, 0.0};
-      const Clock::time_point t0 = Clock::now();
-      record(attempt(vehicle, problem, map, options, &seed, deadline.left()), t0);
-    } else {
-      const Clock::time_point t0 = Clock::now();
-      record(attempt(vehicle, problem, map, options, nullptr, deadline.left()), t0);
-    }
+    const Clock::time_point t0 = Clock::now();
+    record(attemptFlat(vehicle, problem, map, options, deadline), t0);
   } else {
     int blocked = 0;
     const std::vector<Seed> seeds = dubinsSeeds(vehicle, problem, map, options, blocked);

@@ -595,14 +595,5 @@ TEST(DirectTranscription, FailuresAreStatusesWithIpoptsReason) {
       << off_map.result.reason;
 }
 
-TEST(DubinsReference, KnownLengths) {
-  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 10, 0, 0, 1.0), 10.0, 1e-9);
-  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 1, 1, kPi / 2, 1.0), kPi / 2, 1e-9);
-  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 0, 2, kPi, 1.0), kPi, 1e-9);
-  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 0, -2, kPi, 1.0), kPi, 1e-9);
-  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 5, 1, 0, 1.0),
-              testing::dubinsLength(0, 0, 0, 5, -1, 0, 1.0), 1e-9);  // mirror
-}
-
 }  // namespace
 }  // namespace terratraj::ocp

@@ -47,5 +47,15 @@ TEST(DubinsPath, AUTurnInPlaceIsALoop) {
   EXPECT_GT(paths.front().length(), M_PI);
 }
 
+// The reference length the transcription tests compare with.
+TEST(DubinsReference, KnownLengths) {
+  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 10, 0, 0, 1.0), 10.0, 1e-9);
+  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 1, 1, M_PI / 2, 1.0), M_PI / 2, 1e-9);
+  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 0, 2, M_PI, 1.0), M_PI, 1e-9);
+  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 0, -2, M_PI, 1.0), M_PI, 1e-9);
+  EXPECT_NEAR(testing::dubinsLength(0, 0, 0, 5, 1, 0, 1.0),
+              testing::dubinsLength(0, 0, 0, 5, -1, 0, 1.0), 1e-9);  // mirror
+}
+
 }  // namespace
 }  // namespace terratraj::ocp
