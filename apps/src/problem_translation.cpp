@@ -161,6 +161,7 @@ refine::SeededSolveOptions seededSolveOptions(const ProblemSpec& problem,
   }
   seeded.ipopt_max_iterations = problem.solver.ipopt_max_iterations;
   seeded.search_seed = problem.planner.seed;
+  seeded.search_time_s = problem.planner.time_limit_s;  // the PRM stops at its first solution
   seeded.time_limit_s = problem.solver.time_limit_s;
   seeded.stop = stop;
   return seeded;
