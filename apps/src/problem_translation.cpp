@@ -187,11 +187,10 @@ double latticeResolution(const ProblemSpec& problem, const terrain::GridGeometry
 
 double goalPositionTolerance(const ProblemSpec& problem, const terrain::GridGeometry& geometry) {
   if (problem.planner.goal_position_tolerance_m) return *problem.planner.goal_position_tolerance_m;
-  constexpr double kDefault = 0.5;
-  if (problem.planner.kind == PlannerKind::kPrm) return kDefault;
+  if (problem.planner.kind == PlannerKind::kPrm) return search::kDefaultGoalPositionTolerance;
   const double holding =
       std::ceil(latticeResolution(problem, geometry) * std::sqrt(0.5) * 100.0) / 100.0;
-  return std::max(kDefault, holding);
+  return std::max(search::kDefaultGoalPositionTolerance, holding);
 }
 
 search::LatticePlannerOptions latticePlannerOptions(const ProblemSpec& problem) {

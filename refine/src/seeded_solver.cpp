@@ -40,40 +40,35 @@ struct Seed {
   bool beyond_limits = false;
 };
 
-// Whether a sampled path crosses a lethal, no-data or off-map cell, or passes where the vehicle
-// cannot be placed (a contact point, or the terrain surface's stencil, over no data or off the
-// map: a word beside a no-data region). `workspace` is the caller's.
-bool crossesImpassable(const std::vector<ocp::PathPoint2>& points, const terrain::ElevationMap& map,
-                       const models::TerrainFollowingModel& vehicle,
-                       models::AttitudeWorkspace& workspace) {
+// What a sampled path meets on the map, in one placement of the vehicle per point.
+enum class WordTerrain {
+  kClear,
+  kBeyondLimits,  ///< the vehicle, at the path's heading, leaves pitch or roll limits (+ slack)
+  kImpassable,    ///< a lethal, no-data or off-map cell, or where the vehicle cannot be placed
+};
+
+// The path's terrain: impassable where it crosses a lethal, no-data or off-map cell or passes
+// where the vehicle cannot be placed (a contact point, or the terrain surface's stencil, over
+// no data or off the map: a word beside a no-data region); else beyond the limits where the
+// vehicle leaves pitch_max or roll_max by more than `slack` (relative). `workspace` is the
+// caller's.
+WordTerrain classifyWord(const std::vector<ocp::PathPoint2>& points,
+                         const terrain::ElevationMap& map,
+                         const models::TerrainFollowingModel& vehicle,
+                         const models::VehicleLimits& limits, double slack,
+                         models::AttitudeWorkspace& workspace) {
   models::AttitudeResult placed;
+  bool beyond = false;
   for (const ocp::PathPoint2& p : points) {
     const std::optional<terrain::CellIndex> cell = map.geometry().cellAt({p.x, p.y});
-    if (!cell || map.isNoData(*cell) || map.isLethal(*cell)) return true;
+    if (!cell || map.isNoData(*cell) || map.isLethal(*cell)) return WordTerrain::kImpassable;
     if (vehicle.compute({p.x, p.y, p.heading}, workspace, placed) != models::AttitudeStatus::kOk) {
-      return true;
+      return WordTerrain::kImpassable;
     }
+    beyond = beyond || std::abs(placed.attitude.pitch) > (1.0 + slack) * limits.pitch_max ||
+             std::abs(placed.attitude.roll) > (1.0 + slack) * limits.roll_max;
   }
-  return false;
-}
-
-// Whether `vehicle` placed along `points` (at each point's heading) leaves the pitch or roll
-// limits by more than `slack` (relative) somewhere. `workspace` is the caller's.
-bool leavesAttitudeLimits(const std::vector<ocp::PathPoint2>& points,
-                          const models::TerrainFollowingModel& vehicle,
-                          const models::VehicleLimits& limits, double slack,
-                          models::AttitudeWorkspace& workspace) {
-  models::AttitudeResult placed;
-  for (const ocp::PathPoint2& p : points) {
-    if (vehicle.compute({p.x, p.y, p.heading}, workspace, placed) != models::AttitudeStatus::kOk) {
-      continue;
-    }
-    if (std::abs(placed.attitude.pitch) > (1.0 + slack) * limits.pitch_max ||
-        std::abs(placed.attitude.roll) > (1.0 + slack) * limits.roll_max) {
-      return true;
-    }
-  }
-  return false;
+  return beyond ? WordTerrain::kBeyondLimits : WordTerrain::kClear;
 }
 
 // The turning radius of the seeds: kappa_max, and omega_max at the faster end speed.
@@ -99,7 +94,10 @@ std::vector<Seed> dubinsSeeds(const models::TerrainFollowingModel& vehicle,
   for (const ocp::DubinsPath& path : paths) {
     if (static_cast<int>(seeds.size()) >= options.max_words) break;
     const std::vector<ocp::PathPoint2> points = path.sample(options.seed_spacing_m);
-    if (map != nullptr && crossesImpassable(points, *map, vehicle, workspace)) {
+    const WordTerrain terrain = map != nullptr ? classifyWord(points, *map, vehicle, problem.limits,
+                                                              options.seed_limit_slack, workspace)
+                                               : WordTerrain::kClear;
+    if (terrain == WordTerrain::kImpassable) {
       ++blocked;
       continue;
     }
@@ -114,11 +112,10 @@ std::vector<Seed> dubinsSeeds(const models::TerrainFollowingModel& vehicle,
          path.word == ocp::DubinsWord::kLSR || path.word == ocp::DubinsWord::kRSL)
             ? (path.lengths[0] + path.lengths[2]) / path.radius
             : path.length() / path.radius;
-    const bool beyond = map != nullptr && leavesAttitudeLimits(points, vehicle, problem.limits,
-                                                               options.seed_limit_slack, workspace);
     seeds.push_back({std::string("dubins ") + ocp::dubinsWordName(path.word) + " (" +
                          formatLength(path.length()) + " m)",
-                     path.length(), std::move(*guess), turning, beyond});
+                     path.length(), std::move(*guess), turning,
+                     terrain == WordTerrain::kBeyondLimits});
   }
   return seeds;
 }
@@ -398,8 +395,9 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
     // the search seed (an optimiser started across a slope may wander far before it finds the
     // way round, which the search's route already follows).
     tryWords(false);
-    const bool steep = std::any_of(seeds.begin(), seeds.end(),
-                                   [](const Seed& seed) { return seed.beyond_limits; });
+    const long steep_words = std::count_if(seeds.begin(), seeds.end(),
+                                           [](const Seed& seed) { return seed.beyond_limits; });
+    const bool steep = steep_words > 0;
     // No word converged (obstacles or slopes in the way of the words, or, for the
     // transcriptions, terrain the words cross badly): a search seed, whose route follows the
     // terrain within the limits.
@@ -409,8 +407,7 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
       const Clock::time_point t0 = Clock::now();
       const std::string why =
           blocked > 0 && seeds.empty() ? "every Dubins word crosses an impassable cell or no data"
-          : std::all_of(seeds.begin(), seeds.end(),
-                        [](const Seed& seed) { return seed.beyond_limits; })
+          : steep && steep_words == static_cast<long>(seeds.size())
               ? "every Dubins word crosses slopes beyond the pitch or roll limits"
               : "no Dubins word gave a verified trajectory";
       record(solveFromSearch(vehicle, problem, *map, options, deadline.left(), why), t0);

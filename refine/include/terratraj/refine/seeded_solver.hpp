@@ -83,7 +83,8 @@ struct SeededSolveOptions {
   /// A word along which the vehicle (at the word's heading) leaves pitch_max or roll_max by
   /// more than this (relative, >= 0) is tried after the search seed, not before it.
   double seed_limit_slack = 0.1;
-  /// Search seed: the PRM's budget [s] when every word crosses an impassable cell (0: none).
+  /// Search seed: the PRM's budget [s] when no word gave a converged result (0: none); it
+  /// stops at its first solution. `terratraj solve` passes planner.time_limit_s.
   double search_time_s = 1.0;
   std::uint64_t search_seed = 1;  ///< the PRM's random seed
   /// With initial_guess kAuto and a map, first checked: whether the goal can be reached at all
