@@ -79,7 +79,7 @@ void writeSolutions(const search::PlanResult& result, const std::filesystem::pat
 // The planner's time limit, iteration budget (planner.max_iterations) and the SIGINT flag.
 search::TerminationCondition planTermination(const ProblemSpec& problem, CommandContext& context) {
   search::TerminationCondition termination =
-      search::TerminationCondition::timeLimit(problem.planner.time_limit_s);
+      search::TerminationCondition::timeLimit(planningTimeLimit(problem));
   if (problem.planner.max_iterations) {
     termination.maxIterations(static_cast<std::size_t>(*problem.planner.max_iterations));
   }
@@ -162,8 +162,7 @@ PlannerSetup setUpLatticePlanner(const ProblemSpec& problem, const search::Plann
     info.extra["lattice"]["initial_epsilon"] = options.initial_epsilon;
     info.extra["lattice"]["epsilon_step"] = options.epsilon_step;
     context.log->info("planning with the lattice ({}) for {} s",
-                      search::latticeAlgorithmName(options.algorithm),
-                      problem.planner.time_limit_s);
+                      search::latticeAlgorithmName(options.algorithm), planningTimeLimit(problem));
     setup.planner = std::make_unique<search::LatticePlanner>(graph, options);
     return setup;
   }
@@ -186,7 +185,7 @@ PlannerSetup setUpLatticePlanner(const ProblemSpec& problem, const search::Plann
                           {"max_signature_length", planner.maxSignatureLength()},
                           {"frames", frames_json}};
   context.log->info("planning with TAEASL for {} s ({} reference frames)",
-                    problem.planner.time_limit_s, planner.frames().size());
+                    planningTimeLimit(problem), planner.frames().size());
   setup.planner = std::move(taeasl);
   return setup;
 }
@@ -202,7 +201,7 @@ PlannerSetup setUpPlanner(const ProblemSpec& problem, const search::PlanningProb
   search::PrmOptions prm;
   prm.seed = problem.planner.seed;
   setup.planner = std::make_unique<search::KinodynamicPrm>(query, prm);
-  context.log->info("planning with prm for {} s (seed {}, {} model)", problem.planner.time_limit_s,
+  context.log->info("planning with prm for {} s (seed {}, {} model)", planningTimeLimit(problem),
                     prm.seed, query.vehicle->name());
   return setup;
 }
@@ -389,7 +388,7 @@ PlanRun executePlan(const ProblemSpec& problem, const PlanOptions& options,
 
   PlanReportInfo info;
   info.planner = plannerKindName(problem.planner.kind);
-  info.time_limit_s = problem.planner.time_limit_s;
+  info.time_limit_s = planningTimeLimit(problem);
   info.seed = problem.planner.seed;
   search::PlanResult result;
   if (problem.planner.kind != PlannerKind::kPrm && query.goal.contains(query.start)) {

@@ -11,6 +11,7 @@
 #include "terratraj/apps/refine_command.hpp"
 #include "terratraj/apps/solve_command.hpp"
 #include "terratraj/apps/terrain_commands.hpp"
+#include "terratraj/refine/seeded_solver.hpp"
 #include "terratraj/terrain/input_error.hpp"
 #include "terratraj/terrain/terrain_source.hpp"
 #include "terratraj/terrain/terrain_statistics.hpp"
@@ -123,10 +124,12 @@ nlohmann::json problemJson(const ProblemSpec& problem, const ProblemScene& scene
          {{"position_m", problem.solver.tolerance_position_m},
           {"heading_rad", problem.solver.tolerance_heading_rad}}},
         {"time_limit_s", problem.solver.time_limit_s ? nlohmann::json(*problem.solver.time_limit_s)
-                                                     : nlohmann::json(nullptr)}}},
+                                                     : nlohmann::json(nullptr)},
+        // The search seed's PRM budget (at most half the time left when a limit is set).
+        {"search_time_s", problem.planner.time_limit_s.value_or(refine::kDefaultSearchTimeS)}}},
       {"planner",
        {{"kind", plannerKindName(problem.planner.kind)},
-        {"time_limit_s", problem.planner.time_limit_s},
+        {"time_limit_s", planningTimeLimit(problem)},
         {"seed", problem.planner.seed},
         {"homotopy_classes", problem.planner.homotopy_classes},
         {"frame_radius_m", problem.planner.frame_radius_m},

@@ -349,7 +349,7 @@ PlannerSpec parsePlanner(const Context& ctx, const Field& field) {
   if (const std::optional<Field> kind = map.find("kind")) {
     planner.kind = readEnum<PlannerKind>(ctx, *kind, parsePlannerKind, plannerKindNames());
   }
-  map.readNumberInto("time_limit_s", Range::nonNegative(), planner.time_limit_s);
+  planner.time_limit_s = map.optionalNumber("time_limit_s", Range::nonNegative());
   if (map.find("max_iterations")) {
     int iterations = 1;
     map.readIntInto("max_iterations", 1, std::numeric_limits<int>::max(), iterations);

@@ -161,7 +161,8 @@ refine::SeededSolveOptions seededSolveOptions(const ProblemSpec& problem,
   }
   seeded.ipopt_max_iterations = problem.solver.ipopt_max_iterations;
   seeded.search_seed = problem.planner.seed;
-  seeded.search_time_s = problem.planner.time_limit_s;  // the PRM stops at its first solution
+  // The PRM stops at its first solution; absent, refine::kDefaultSearchTimeS.
+  seeded.search_time_s = problem.planner.time_limit_s;
   seeded.time_limit_s = problem.solver.time_limit_s;
   seeded.stop = stop;
   return seeded;
@@ -183,6 +184,10 @@ search::PlanningProblem planningProblem(const ProblemSpec& problem, const Proble
 double latticeResolution(const ProblemSpec& problem, const terrain::GridGeometry& geometry) {
   if (problem.planner.lattice_resolution_m) return *problem.planner.lattice_resolution_m;
   return geometry.cell * std::max(1.0, std::round(0.5 / geometry.cell));
+}
+
+double planningTimeLimit(const ProblemSpec& problem) {
+  return problem.planner.time_limit_s.value_or(kDefaultPlanningTimeS);
 }
 
 double goalPositionTolerance(const ProblemSpec& problem, const terrain::GridGeometry& geometry) {

@@ -11,6 +11,11 @@
 
 namespace terratraj::refine {
 
+double searchSeedBudget(const SeededSolveOptions& options, std::optional<double> time_left_s) {
+  const double budget = options.search_time_s.value_or(kDefaultSearchTimeS);
+  return time_left_s ? std::min(budget, 0.5 * *time_left_s) : budget;
+}
+
 SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
                                const ocp::BoundaryValueProblem& problem,
                                const terrain::ElevationMap& map, const SeededSolveOptions& options,
@@ -37,8 +42,7 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
   search::PrmOptions prm_options;
   prm_options.seed = options.search_seed;
   search::KinodynamicPrm prm(query, prm_options);
-  const double budget =
-      time_left_s ? std::min(options.search_time_s, 0.5 * *time_left_s) : options.search_time_s;
+  const double budget = searchSeedBudget(options, time_left_s);
   const search::PlanResult plan = prm.solve(
       search::TerminationCondition::timeLimit(budget).stopAtFirstSolution().stopFlag(options.stop));
   if (plan.status != search::PlanStatus::kSolved) {
@@ -51,7 +55,9 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
   }
   std::ostringstream seed;
   seed.precision(3);
-  seed << "search (prm first solution, " << plan.solutions.front().length_m << " m)";
+  seed << "search (prm first solution, " << plan.solutions.front().length_m << " m, found in "
+       << 1e-3 * plan.first_solution_ms.value_or(plan.planning_time_ms) << " s of " << budget
+       << " s)";
   out.initial_guess = seed.str();
   search::ReferenceFrameOptions frame_options;
   frame_options.anchor = 0.5 * (query.start.position + query.goal.position);

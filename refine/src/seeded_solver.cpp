@@ -402,8 +402,8 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
     // transcriptions, terrain the words cross badly): a search seed, whose route follows the
     // terrain within the limits.
     if (best.status != ocp::SolveStatus::kConverged && map != nullptr &&
-        options.search_time_s > 0.0 && (seeds.empty() || blocked > 0 || steep || transcription) &&
-        !deadline.over()) {
+        options.search_time_s.value_or(kDefaultSearchTimeS) > 0.0 &&
+        (seeds.empty() || blocked > 0 || steep || transcription) && !deadline.over()) {
       const Clock::time_point t0 = Clock::now();
       const std::string why =
           blocked > 0 && seeds.empty() ? "every Dubins word crosses an impassable cell or no data"

@@ -251,7 +251,8 @@ TEST(ProblemLoader, OutOfRangeValues) {
     EXPECT_THAT(parseError(yaml), HasSubstr(expected)) << yaml;
   }
   // Zero time limit is allowed.
-  EXPECT_DOUBLE_EQ(parse(minimalWith("planner: {time_limit_s: 0}\n")).planner.time_limit_s, 0.0);
+  EXPECT_EQ(parse(minimalWith("planner: {time_limit_s: 0}\n")).planner.time_limit_s,
+            std::optional<double>(0.0));
 }
 
 TEST(ProblemLoader, BoundaryStateWithinVehicleLimits) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "problem_loader_fixture.hpp"
+#include "terratraj/apps/problem_translation.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
 #include "terratraj/terrain/grid_geometry.hpp"
 #include "terratraj/terrain/input_error.hpp"
@@ -73,7 +74,7 @@ TEST(ProblemLoader, ContractExampleParses) {
   EXPECT_DOUBLE_EQ(p.solver.tolerance_heading_rad, 0.001);
   EXPECT_FALSE(p.solver.time_limit_s.has_value());
   EXPECT_EQ(p.planner.kind, PlannerKind::kPrm);
-  EXPECT_DOUBLE_EQ(p.planner.time_limit_s, 1.0);
+  EXPECT_EQ(p.planner.time_limit_s, std::optional<double>(1.0));
   EXPECT_EQ(p.planner.seed, 1u);
   EXPECT_EQ(p.planner.homotopy_classes, 3);
   EXPECT_DOUBLE_EQ(p.planner.frame_radius_m, 10.0);
@@ -121,7 +122,8 @@ TEST(ProblemLoader, MinimalProblemTakesDefaults) {
   EXPECT_DOUBLE_EQ(p.solver.tolerance_heading_rad, 0.001);
   EXPECT_FALSE(p.solver.time_limit_s.has_value());
   EXPECT_EQ(p.planner.kind, PlannerKind::kPrm);
-  EXPECT_DOUBLE_EQ(p.planner.time_limit_s, 1.0);
+  EXPECT_FALSE(p.planner.time_limit_s.has_value());
+  EXPECT_DOUBLE_EQ(planningTimeLimit(p), 1.0);
   EXPECT_EQ(p.planner.seed, 1u);
   EXPECT_EQ(p.planner.homotopy_classes, 3);
   EXPECT_DOUBLE_EQ(p.planner.frame_radius_m, 10.0);
@@ -180,7 +182,7 @@ planner: {kind: taeasl, time_limit_s: 0, seed: 0, homotopy_classes: 1, frame_rad
   EXPECT_DOUBLE_EQ(p.solver.tolerance_position_m, 1e-6);
   EXPECT_DOUBLE_EQ(p.solver.tolerance_heading_rad, 2e-6);
   EXPECT_EQ(p.planner.kind, PlannerKind::kTaeasl);
-  EXPECT_DOUBLE_EQ(p.planner.time_limit_s, 0.0);
+  EXPECT_EQ(p.planner.time_limit_s, std::optional<double>(0.0));
   EXPECT_EQ(p.planner.seed, 0u);
   EXPECT_EQ(p.planner.homotopy_classes, 1);
   EXPECT_DOUBLE_EQ(p.planner.frame_radius_m, 2.5);

@@ -12,6 +12,7 @@
 #include "terratraj/bench/robustness_sets.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/ocp/dubins_path.hpp"
+#include "terratraj/refine/search_seed.hpp"
 #include "terratraj/refine/seeded_solver.hpp"
 #include "terratraj/terrain/terrain_surface.hpp"
 
@@ -222,6 +223,9 @@ TEST_F(SeededSolverTest, WordsAcrossSlopesBeyondTheLimitsComeAfterTheSearchSeed)
   ASSERT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
   ASSERT_FALSE(s.attempts.empty());
   EXPECT_NE(s.attempts.front().seed.find("search"), std::string::npos) << s.attempts.front().seed;
+  // The seed's name reports the budget: the default (no time limit).
+  EXPECT_NE(s.attempts.front().seed.find(" s of 10 s)"), std::string::npos)
+      << s.attempts.front().seed;
   expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);
   models::AttitudeWorkspace workspace;
   models::AttitudeResult placed;
@@ -238,6 +242,22 @@ TEST_F(SeededSolverTest, WordsAcrossSlopesBeyondTheLimitsComeAfterTheSearchSeed)
     north = std::max(north, row.y);
   }
   EXPECT_GT(north, 18.0);
+}
+
+// The search seed's budget: absent, kDefaultSearchTimeS (the moon four-wheel problem of
+// docs/benchmarks.md failed with a fixed 1 s when the PRM needed more); never more than half the
+// time left, which the refinement of its path needs.
+TEST(SearchSeedBudget, DefaultsToTenSecondsAndLeavesHalfTheTimeLeft) {
+  SeededSolveOptions options;
+  EXPECT_DOUBLE_EQ(searchSeedBudget(options, std::nullopt), kDefaultSearchTimeS);
+  EXPECT_DOUBLE_EQ(kDefaultSearchTimeS, 10.0);
+  EXPECT_DOUBLE_EQ(searchSeedBudget(options, 60.0), 10.0);
+  EXPECT_DOUBLE_EQ(searchSeedBudget(options, 6.0), 3.0);
+  options.search_time_s = 1.0;
+  EXPECT_DOUBLE_EQ(searchSeedBudget(options, std::nullopt), 1.0);
+  EXPECT_DOUBLE_EQ(searchSeedBudget(options, 1.0), 0.5);
+  options.search_time_s = 0.0;
+  EXPECT_DOUBLE_EQ(searchSeedBudget(options, 60.0), 0.0);
 }
 
 }  // namespace

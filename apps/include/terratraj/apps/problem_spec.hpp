@@ -219,7 +219,9 @@ struct SolverSpec {
 /// `planner`: the global planner.
 struct PlannerSpec {
   PlannerKind kind = PlannerKind::kPrm;
-  double time_limit_s = 1.0;  ///< wall-clock budget [s], >= 0
+  /// Wall-clock budget [s], >= 0. Absent: plan 1 s (planningTimeLimit()); the search seed of
+  /// `solve` refine::kDefaultSearchTimeS (it stops at its first solution).
+  std::optional<double> time_limit_s;
   /// Iteration budget (PRM milestones, lattice expansions), >= 1; absent: none. With it and a
   /// time limit that is not reached, the same seed gives the same files.
   std::optional<int> max_iterations;

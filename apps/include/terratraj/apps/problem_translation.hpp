@@ -59,6 +59,12 @@ search::PlanningProblem planningProblem(const ProblemSpec& problem, const Proble
 /// multiple of the map cell nearest 0.5 m (at least one cell).
 double latticeResolution(const ProblemSpec& problem, const terrain::GridGeometry& geometry);
 
+/// The planners' default wall-clock budget [s] (`plan` without planner.time_limit_s).
+inline constexpr double kDefaultPlanningTimeS = 1.0;
+
+/// `plan`'s wall-clock budget [s]: planner.time_limit_s, else kDefaultPlanningTimeS.
+double planningTimeLimit(const ProblemSpec& problem);
+
 /// The goal region's radius [m]: planner.goal_position_tolerance_m; absent, 0.5 m, and for the
 /// lattice planners at least the distance within which every goal has a lattice position
 /// (spacing / sqrt 2, rounded up to the centimetre: 2.13 m on a 3 m DEM's lattice), so the

@@ -10,7 +10,11 @@
 
 namespace terratraj::refine {
 
-/// Plans with the PRM for options.search_time_s at most (stopping at its first solution; the
+/// The search seed's PRM budget [s]: options.search_time_s (absent: kDefaultSearchTimeS), and,
+/// with `time_left_s`, at most half of it (the refinement of the PRM's path needs the rest).
+double searchSeedBudget(const SeededSolveOptions& options, std::optional<double> time_left_s);
+
+/// Plans with the PRM for searchSeedBudget() at most (stopping at its first solution; the
 /// seed options.search_seed), then refines that candidate with the method of `options` (auto:
 /// collocation) within `time_left_s`. The result's status is the refinement's (the verdict
 /// against the exact goal); kInfeasible with the reason when the PRM finds nothing (`why`: why

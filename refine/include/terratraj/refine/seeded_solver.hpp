@@ -53,6 +53,11 @@ enum class InitialGuessKind {
 /// piecewise-linear controls (limits hold between nodes), 500 Ipopt iterations a round.
 ocp::TranscriptionSolveOptions defaultCoreTranscription();
 
+/// The search seed's PRM budget when SeededSolveOptions::search_time_s is absent [s]. The PRM
+/// stops at its first solution (found in under 1 s on open maps, up to several seconds on rough
+/// real DEMs), so the budget runs out only when the search finds nothing.
+inline constexpr double kDefaultSearchTimeS = 10.0;
+
 /// Settings of solveSeeded().
 struct SeededSolveOptions {
   CoreMethod method = CoreMethod::kAuto;
@@ -84,8 +89,10 @@ struct SeededSolveOptions {
   /// more than this (relative, >= 0) is tried after the search seed, not before it.
   double seed_limit_slack = 0.1;
   /// Search seed: the PRM's budget [s] when no word gave a converged result (0: none); it
-  /// stops at its first solution. `terratraj solve` passes planner.time_limit_s.
-  double search_time_s = 1.0;
+  /// stops at its first solution, so the budget is spent only when it finds none. Absent:
+  /// kDefaultSearchTimeS. Never more than half the time left (searchSeedBudget()).
+  /// `terratraj solve` passes planner.time_limit_s.
+  std::optional<double> search_time_s;
   std::uint64_t search_seed = 1;  ///< the PRM's random seed
   /// With initial_guess kAuto and a map, first checked: whether the goal can be reached at all
   /// (models::checkGoalReachability); when not, kInfeasible with its reason before any seed is
