@@ -60,6 +60,9 @@ ProblemScene::ProblemScene(const ProblemSpec& problem, const CommandContext& con
   if (problem.vehicle.tables.roll_curvature) {
     roll_table_ = models::readRollCurvatureTable(*problem.vehicle.tables.roll_curvature);
   }
+  if (problem.vehicle.model == VehicleModelKind::kSegwayRmp) {
+    segway_lookups_ = models::defaultSegwayLookups();
+  }
   vehicle_ = makeTerrainFollowingModel(problem.vehicle.model, surface_);
   start_attitude_ = restingAttitude(*vehicle_, poses_.start, "start", problem);
   goal_attitude_ = restingAttitude(*vehicle_, poses_.goal, "goal", problem);

@@ -92,7 +92,7 @@ ocp::BoundaryValueProblem boundaryValueProblem(const ProblemSpec& problem,
   bvp.cost.alpha = problem.cost.alpha;
   bvp.orders = {problem.solver.yaw_rate_order, problem.solver.speed_order};
   bvp.limits = problem.vehicle.limits;
-  bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable()};
+  bvp.tables = {scene.pitchTable(), scene.rollCurvatureTable(), scene.segwayLookups()};
   return bvp;
 }
 

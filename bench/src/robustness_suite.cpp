@@ -63,7 +63,8 @@ struct RobustSetData {
   std::unique_ptr<models::TerrainFollowingModel> vehicle;
   std::vector<ocp::BoundaryValueProblem> problems;
   bool dubins_bound = false;  ///< constant speed on flat ground: the Dubins length bounds
-  bool segway = false;        ///< the Segway RMP's transcription constraints apply
+  bool segway = false;        ///< the Segway RMP: its look-ups apply (problems' tables.segway)
+  models::SegwayLookups segway_lookups = models::defaultSegwayLookups();
 };
 
 struct RobustSetSpec {
@@ -118,6 +119,9 @@ std::vector<RobustSetSpec> robustSets(const BenchmarkSettings& settings) {
                          auto data = makeData(std::move(map), vehicle);
                          data->problems = sets::terrainProblems(data->map, *data->vehicle,
                                                                 sets::roverLimits(), per, seed + 2);
+                         for (ocp::BoundaryValueProblem& problem : data->problems) {
+                           if (data->segway) problem.tables.segway = &data->segway_lookups;
+                         }
                          return data;
                        }});
     }
@@ -147,10 +151,6 @@ nlohmann::json robustRow(const RobustSetData& data, int index, const std::string
   options.method = coreMethodNamed(method);
   options.search_seed = 1;
   options.time_limit_s = 60.0;  // a case that needs more is a failure worth seeing
-  if (data.segway) {
-    options.transcription.transcription.model.segway =
-        ocp::SegwayConstraints{models::defaultSegwayLookups()};
-  }
   const refine::SeededSolution s = refine::solveSeeded(*data.vehicle, problem, &data.map, options);
   // The problem, to reproduce the row with `terratraj solve` (headings in degrees).
   const auto state = [](const ocp::VehicleState& q) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -108,6 +109,20 @@ double SegwaySlopeBounds::speedLimit(double slope) const { return linear(slopes_
 
 double SegwaySlopeBounds::accelerationLimit(double slope) const {
   return linear(slopes_, a_max_, slope);
+}
+
+double SegwaySlopeBounds::drivableSlope() const {
+  const auto stopped = [&](double slope) {
+    return !(speedLimit(slope) > 0.0) || !(accelerationLimit(slope) > 0.0);
+  };
+  if (stopped(0.0)) return 0.0;
+  double drivable = std::numeric_limits<double>::infinity();
+  // Linear between grid points and clamped outside: the first zero on each side is a grid
+  // point (both bounds are >= 0).
+  for (const double slope : slopes_) {
+    if (stopped(slope)) drivable = std::min(drivable, std::abs(slope));
+  }
+  return drivable;
 }
 
 SegwayLookups defaultSegwayLookups() {

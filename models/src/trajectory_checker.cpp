@@ -56,7 +56,8 @@ class Violations {
 
 bool isAngle(const std::string& limit) {
   return limit == "pitch_max" || limit == "roll_max" || limit == "goal_heading" ||
-         limit == "heading_of_motion" || limit == "pitch_column" || limit == "roll_column";
+         limit == "heading_of_motion" || limit == "pitch_column" || limit == "roll_column" ||
+         limit == "segway_platform_pitch";
 }
 
 bool isStructural(const std::string& limit) {
@@ -67,10 +68,10 @@ bool isStructural(const std::string& limit) {
 std::string unitOf(const std::string& limit) {
   if (isAngle(limit)) return " rad";
   if (limit == "v_max" || limit == "v_min" || limit == "goal_speed" || limit == "start_speed" ||
-      limit == "table_pitch" || limit == "table_roll_curvature") {
+      limit == "table_pitch" || limit == "table_roll_curvature" || limit == "segway_slope_v_max") {
     return " m/s";
   }
-  if (limit == "a_max") return " m/s^2";
+  if (limit == "a_max" || limit == "segway_slope_a_max") return " m/s^2";
   if (limit == "omega_max" || limit == "omega_equals_v_curvature") return " rad/s";
   if (limit == "kappa_max") return " 1/m";
   if (limit == "sigma_max") return " 1/(m s)";
@@ -170,7 +171,29 @@ void checkSamples(const std::vector<TrajectorySample>& s, const TrajectoryRequir
       const double cap = r.roll_curvature_table->lookup(roll, p.curvature);
       found.above("table_roll_curvature", p.v, cap, slack(cap), i);
     }
+    if (r.segway != nullptr) {
+      const double cap = r.segway->bounds.speedLimit(pitch);
+      found.above("segway_slope_v_max", p.v, cap, slack(cap), i);
+    }
   }
+}
+
+// The Segway's rules between two samples (001_... III.C): the acceleration of the segment,
+// (v_b - v_a) / dt, within the slope's a_max, and the platform pitch it causes within
+// pitch_max. The slope is the terrain pitch (the samples' column, checked above); between the
+// samples it lies between the two ends', so the bound is taken at the end where it is widest
+// (a_max) or the pitch smallest (the platform): what the two samples alone can prove broken.
+void checkSegwaySegment(const TrajectorySample& a, const TrajectorySample& b, double acceleration,
+                        std::size_t i, const TrajectoryRequirements& r, Violations& found) {
+  const CheckTolerances& tol = r.tolerances;
+  const auto slack = [&](double limit) { return tol.relative * std::abs(limit) + tol.absolute; };
+  const SegwayLookups& segway = *r.segway;
+  const double a_cap =
+      std::max(segway.bounds.accelerationLimit(a.pitch), segway.bounds.accelerationLimit(b.pitch));
+  found.above("segway_slope_a_max", std::abs(acceleration), a_cap, slack(a_cap), i);
+  const double platform = std::min(std::abs(segway.pitch_response.pitch(acceleration, a.pitch)),
+                                   std::abs(segway.pitch_response.pitch(acceleration, b.pitch)));
+  found.above("segway_platform_pitch", platform, r.limits.pitch_max, slack(r.limits.pitch_max), i);
 }
 
 // How far the heading of a segment whose curvature runs linearly (in arc length) from
@@ -201,6 +224,7 @@ void checkSegments(const std::vector<TrajectorySample>& s, const TrajectoryRequi
       continue;
     }
     found.above("a_max", std::abs(b.v - a.v) / dt, l.a_max, slack(l.a_max), i);
+    if (r.segway != nullptr) checkSegwaySegment(a, b, (b.v - a.v) / dt, i, r, found);
     found.above("sigma_max", std::abs(b.curvature - a.curvature) / dt, l.sigma_max,
                 slack(l.sigma_max), i);
     const double dx = b.x - a.x, dy = b.y - a.y;

@@ -15,6 +15,7 @@ models::TrajectoryRequirements solveRequirements(const models::TerrainFollowingM
   r.limits = problem.limits;
   r.pitch_table = problem.tables.pitch;
   r.roll_curvature_table = problem.tables.roll_curvature;
+  r.segway = problem.tables.segway;
   models::StartRequirement start;
   start.position = {problem.start.x, problem.start.y};
   start.v = problem.start.v;

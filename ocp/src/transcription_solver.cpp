@@ -159,6 +159,10 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
   }
   const Deadline deadline(started, options.time_limit_s, options.stop);
   DirectTranscriptionOptions transcription = options.transcription;
+  // The problem's Segway look-ups (the verdict checks them) are constraints here too.
+  if (problem.tables.segway != nullptr && !transcription.model.segway) {
+    transcription.model.segway = SegwayConstraints{*problem.tables.segway};
+  }
   // Verified against the true limits, and against lethal cells only (the verdict) rather than
   // the clearance the solver kept.
   TranscriptionModelOptions verification = transcription.model;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "terratraj/ocp/deadline.hpp"
 #include "terratraj/ocp/dubins_path.hpp"
@@ -15,6 +16,8 @@
 
 namespace terratraj::refine {
 namespace {
+
+constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
 using Clock = std::chrono::steady_clock;
 
@@ -252,6 +255,40 @@ SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
   return out;
 }
 
+// The Segway at the start or the goal on a slope (its pitch along the heading) where its
+// look-ups allow no speed or no acceleration: it can neither leave the start nor stop at the
+// goal, so the goal is unreachable (with the reason); std::nullopt otherwise.
+std::optional<models::GoalReachability> segwayStuckAtAnEnd(
+    const models::TerrainFollowingModel& vehicle, const ocp::BoundaryValueProblem& problem,
+    const models::SegwayLookups& segway) {
+  const std::pair<const char*, const ocp::VehicleState*> ends[] = {{"start", &problem.start},
+                                                                   {"goal", &problem.goal}};
+  for (const auto& [name, state] : ends) {
+    models::AttitudeWorkspace workspace;
+    models::AttitudeResult attitude;
+    if (vehicle.compute({state->x, state->y, state->heading}, workspace, attitude) !=
+        models::AttitudeStatus::kOk) {
+      continue;  // the problem's validation names a pose the vehicle cannot rest at
+    }
+    const double slope = attitude.attitude.pitch;
+    if (segway.bounds.speedLimit(slope) > 0.0 && segway.bounds.accelerationLimit(slope) > 0.0) {
+      continue;
+    }
+    std::ostringstream why;
+    why.precision(3);
+    why << "the goal cannot be reached: at the " << name << " the Segway stands on a slope of "
+        << slope * kDegreesPerRadian
+        << " deg along its heading, where its look-ups allow no speed or "
+        << "acceleration (they allow slopes under "
+        << segway.bounds.drivableSlope() * kDegreesPerRadian << " deg)";
+    models::GoalReachability out;
+    out.reachable = false;
+    out.reason = why.str();
+    return out;
+  }
+  return std::nullopt;
+}
+
 // solveSeeded's first step: whether the goal can be reached at all (with initial_guess kAuto, a
 // map, and the check enabled; else std::nullopt), within what is left of the time limit.
 std::optional<models::GoalReachability> checkReachability(
@@ -266,8 +303,17 @@ std::optional<models::GoalReachability> checkReachability(
   if (const std::optional<double> left = deadline.left()) {
     check.time_limit_s = std::min(check.time_limit_s.value_or(*left), *left);
   }
+  models::VehicleLimits limits = problem.limits;
+  if (problem.tables.segway != nullptr) {
+    if (std::optional<models::GoalReachability> stuck =
+            segwayStuckAtAnEnd(vehicle, problem, *problem.tables.segway)) {
+      return stuck;
+    }
+    // Where its look-ups allow no speed, the Segway cannot drive: a pitch limit.
+    limits.pitch_max = std::min(limits.pitch_max, problem.tables.segway->bounds.drivableSlope());
+  }
   return models::checkGoalReachability(
-      vehicle, *map, problem.limits, {problem.start.x, problem.start.y, problem.start.heading},
+      vehicle, *map, limits, {problem.start.x, problem.start.y, problem.start.heading},
       {problem.goal.x, problem.goal.y, problem.goal.heading}, check);
 }
 
@@ -318,7 +364,8 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
   bool any_candidate = false;
   best.method = coreMethodName(options.method);
   best.reason = "no attempt was made";
-  // `candidate` false: listed among the attempts, never the result (a bridge's first step).
+  // `candidate` false: listed among the attempts, never the result (a bridge's first step when
+  // a clearance is asked for).
   const auto record = [&](SeededSolution result, const Clock::time_point attempt_started,
                           bool candidate = true) {
     SeedAttempt a;
@@ -339,8 +386,10 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
   };
   // auto, when collocation fails from a word: the parametric ipopt (few unknowns, free speed,
   // the limits held) from the same word, and collocation again from its trajectory, which
-  // follows the terrain within the limits (the result stays collocation's: it holds every
-  // constraint of the vehicle, the Segway's look-ups included).
+  // follows the terrain within the limits. ipopt's verified result is a candidate too (its
+  // verdict checks every limit, the Segway's look-ups included), unless a clearance is asked
+  // for, which only the transcriptions hold.
+  const bool clearance = options.transcription.transcription.model.clearance.map != nullptr;
   const auto bridgeThroughIpopt = [&](const Seed& seed) {
     SeededSolveOptions parametric = options;
     parametric.method = CoreMethod::kIpopt;
@@ -349,7 +398,7 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
     std::optional<ocp::TranscriptionGuess> guess;
     if (step.verified.ok) guess = guessOrNothing(step.verified.trajectory);
     const double length = step.verified.length;
-    record(std::move(step), t0, false);
+    record(std::move(step), t0, !clearance);
     if (!guess || deadline.over()) return;
     const Seed bridged{"ipopt from " + seed.name, length, std::move(*guess), seed.turning};
     const Clock::time_point t1 = Clock::now();

@@ -18,6 +18,8 @@
 namespace terratraj::apps {
 namespace {
 
+using ::testing::AnyOf;
+using ::testing::Eq;
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
@@ -291,9 +293,12 @@ TEST_F(CliTest, SolveWritesTheReportAndTheTrajectory) {
     EXPECT_TRUE(json.contains(key)) << key;
   }
   EXPECT_EQ(json["status"], "converged");
-  // The default method: auto (global seeds, collocation), which says what it used.
+  // The default method: auto (global seeds, collocation, the parametric ipopt when collocation
+  // fails from a word), which says what it used. Here collocation reaches its iteration limit
+  // from the shortest word; ipopt's verified 7.74 s beats collocation's 12.0 s from the next.
   EXPECT_EQ(json["requested_method"], "auto");
-  EXPECT_EQ(json["method"], "collocation");
+  EXPECT_THAT(json["method"].get<std::string>(), AnyOf(Eq("collocation"), Eq("ipopt")));
+  EXPECT_LT(json["cost"].get<double>(), 8.0);
   EXPECT_THAT(json["initial_guess"].get<std::string>(), HasSubstr("dubins"));
   EXPECT_LT(json["terminal_error"]["position_m"].get<double>(), 1e-3);
   EXPECT_FALSE(json["history"].empty());

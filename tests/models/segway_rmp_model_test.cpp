@@ -6,6 +6,8 @@
 #include <cmath>
 #include <fstream>
 
+#include "terratraj/models/point_attitude_model.hpp"
+#include "terratraj/models/trajectory_checker.hpp"
 #include "terratraj/terrain/input_error.hpp"
 #include "terratraj/terrain/terrain_generator.hpp"
 
@@ -87,6 +89,69 @@ TEST(SegwayRmpModel, MovesAlongArcsOnFlatGround) {
   EXPECT_NEAR(end.heading, 0.4, 1e-7);
   ASSERT_TRUE(model.propagate(state, Eigen::Vector2d(1.0, 0.0), 0.2, end));
   EXPECT_NEAR(end.v, 1.2, 1e-12);
+}
+
+TEST(SegwayLookups, DrivableSlopeIsWhereTheBoundsEnd) {
+  EXPECT_NEAR(defaultSegwayLookups().bounds.drivableSlope(), 20.0 * M_PI / 180.0, 1e-12);
+  const SegwaySlopeBounds level_only({-0.1, 0.0, 0.1}, {0.0, 1.0, 0.0}, {0.0, 1.0, 0.0});
+  EXPECT_DOUBLE_EQ(level_only.drivableSlope(), 0.1);
+  const SegwaySlopeBounds everywhere({-0.1, 0.1}, {1.0, 1.0}, {1.0, 1.0});
+  EXPECT_TRUE(std::isinf(everywhere.drivableSlope()));
+}
+
+// Straight up a ramp of `slope` along +x from rest-free speed v0 with acceleration a, rows
+// every 0.1 s, the attitude columns from the point model (what a solver would write).
+Trajectory straightUp(const TerrainFollowingModel& vehicle, double slope, double v0, double a) {
+  Trajectory trajectory;
+  AttitudeWorkspace workspace;
+  AttitudeResult attitude;
+  for (int i = 0; i <= 20; ++i) {
+    const double t = 0.1 * i;
+    TrajectorySample s{};
+    s.t = t;
+    s.x = 5.0 + (v0 * t + 0.5 * a * t * t) * std::cos(slope);
+    s.y = 10.0;
+    s.v = v0 + a * t;
+    EXPECT_EQ(vehicle.compute({s.x, s.y, 0.0}, workspace, attitude), AttitudeStatus::kOk);
+    s.z = attitude.attitude.z;
+    s.roll = attitude.attitude.roll;
+    s.pitch = attitude.attitude.pitch;
+    trajectory.samples.push_back(s);
+  }
+  return trajectory;
+}
+
+// The independent check holds a Segway to its look-ups when given them: no speed beyond the
+// slope's bound (0 beyond 20 deg), and the platform pitch of its acceleration within pitch_max.
+TEST(SegwayLookups, TheIndependentCheckHoldsThem) {
+  const SegwayLookups lookups = defaultSegwayLookups();
+  TrajectoryRequirements r;
+  r.limits.v_max = 2.0;
+  r.limits.a_max = 1.0;
+  r.limits.pitch_max = r.limits.roll_max = 0.6;
+  r.segway = &lookups;
+  const auto check = [&](double slope, double v0, double a) {
+    const ElevationMap map = ramp(slope);
+    const TerrainSurface surface(map, Interpolation::kBicubic);
+    const PointAttitudeModel vehicle(surface);
+    r.vehicle = &vehicle;
+    return checkTrajectory(straightUp(vehicle, slope, v0, a), r);
+  };
+  EXPECT_TRUE(check(10.0 * M_PI / 180.0, 0.5, 0.0).ok()) << check(0.17, 0.5, 0.0).summary();
+  const CheckReport steep = check(22.0 * M_PI / 180.0, 0.5, 0.0);
+  ASSERT_NE(steep.find("segway_slope_v_max"), nullptr) << steep.summary();
+  EXPECT_NE(check(22.0 * M_PI / 180.0, 0.5, 0.1).find("segway_slope_a_max"), nullptr);  // 0 there
+  EXPECT_EQ(steep.find("pitch_max"), nullptr);  // within 0.6 rad: the look-ups alone fail it
+  // Accelerating at 0.5 m/s^2 on the level leans the platform by atan(0.5 / 9.81) = 0.051 rad.
+  r.limits.pitch_max = 0.1;
+  EXPECT_TRUE(check(0.0, 0.2, 0.5).ok()) << check(0.0, 0.2, 0.5).summary();
+  r.limits.pitch_max = 0.04;
+  const CheckReport leaning = check(0.0, 0.2, 0.5);
+  ASSERT_NE(leaning.find("segway_platform_pitch"), nullptr) << leaning.summary();
+  EXPECT_NEAR(leaning.find("segway_platform_pitch")->value, std::atan(0.5 / 9.81), 2e-3);
+  // Without the look-ups, the same trajectory passes.
+  r.segway = nullptr;
+  EXPECT_TRUE(check(0.0, 0.2, 0.5).ok());
 }
 
 TEST(SegwayRmpModel, ClimbsARampAlongItsPlane) {

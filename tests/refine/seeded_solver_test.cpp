@@ -244,6 +244,38 @@ TEST_F(SeededSolverTest, WordsAcrossSlopesBeyondTheLimitsComeAfterTheSearchSeed)
   EXPECT_GT(north, 18.0);
 }
 
+// A Segway on a slope its look-ups allow no speed on (22 deg along its heading; they end at
+// 20 deg) can never leave the start: unreachable, with the reason, before any seed. The same
+// start at 15 deg is solved, and the result holds the look-ups (the verdict checks them).
+TEST(SeededSolverSegway, AStartOnASlopeItCannotDriveIsUnreachable) {
+  const models::SegwayLookups lookups = models::defaultSegwayLookups();
+  const auto solveOn = [&](double slope_deg) {
+    const terrain::ElevationMap map =
+        terrain::testing::planeMap(120, 120, 0.25, std::tan(slope_deg * M_PI / 180.0), 0.0, 0.0);
+    const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+    const models::PointAttitudeModel vehicle(surface);
+    ocp::BoundaryValueProblem problem;
+    problem.start = {8.0, 15.0, 0.0, 0.0, 0.0};
+    problem.goal = {14.0, 16.0, 0.0, 0.0, 0.0};
+    problem.limits = sets::roverLimits();
+    problem.tables.segway = &lookups;
+    SeededSolveOptions options;
+    options.time_limit_s = 60.0;
+    return solveSeeded(vehicle, problem, &map, options);
+  };
+  const SeededSolution stuck = solveOn(22.0);
+  EXPECT_EQ(stuck.status, ocp::SolveStatus::kInfeasible);
+  ASSERT_TRUE(stuck.reachability.has_value());
+  EXPECT_FALSE(stuck.reachability->reachable);
+  EXPECT_NE(stuck.reason.find("at the start the Segway stands on a slope of 22 deg"),
+            std::string::npos)
+      << stuck.reason;
+  EXPECT_TRUE(stuck.attempts.empty());
+  const SeededSolution drivable = solveOn(15.0);
+  ASSERT_EQ(drivable.status, ocp::SolveStatus::kConverged) << drivable.reason;
+  EXPECT_TRUE(drivable.verdict.passes()) << drivable.verdict.reason;
+}
+
 // The search seed's budget: absent, kDefaultSearchTimeS (the moon four-wheel problem of
 // docs/benchmarks.md failed with a fixed 1 s when the PRM needed more); never more than half the
 // time left, which the refinement of its path needs.

@@ -9,6 +9,7 @@
 #include "terratraj/apps/command_context.hpp"
 #include "terratraj/apps/problem_loader.hpp"
 #include "terratraj/apps/problem_spec.hpp"
+#include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/models/terrain_following_model.hpp"
 #include "terratraj/models/velocity_table.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
@@ -43,6 +44,10 @@ class ProblemScene {
   const models::RollCurvatureSpeedTable* rollCurvatureTable() const {
     return roll_table_ ? &*roll_table_ : nullptr;
   }
+  /// The Segway RMP's look-ups (models::defaultSegwayLookups()) for that vehicle, else null.
+  const models::SegwayLookups* segwayLookups() const {
+    return segway_lookups_ ? &*segway_lookups_ : nullptr;
+  }
   /// The vehicle at rest at the start and at the goal.
   const models::AttitudeResult& startAttitude() const { return start_attitude_; }
   const models::AttitudeResult& goalAttitude() const { return goal_attitude_; }
@@ -52,6 +57,7 @@ class ProblemScene {
   ResolvedPoses poses_;
   std::optional<models::PitchSpeedTable> pitch_table_;
   std::optional<models::RollCurvatureSpeedTable> roll_table_;
+  std::optional<models::SegwayLookups> segway_lookups_;
   terrain::TerrainSurface surface_;
   std::unique_ptr<models::TerrainFollowingModel> vehicle_;
   models::AttitudeResult start_attitude_, goal_attitude_;

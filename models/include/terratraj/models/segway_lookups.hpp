@@ -53,6 +53,11 @@ class SegwaySlopeBounds {
                     std::vector<double> a_max);
   double speedLimit(double slope) const;
   double accelerationLimit(double slope) const;
+  /// The largest slope magnitude [rad] below which both bounds are positive, uphill and
+  /// downhill: the first zero of either look-up on each side of 0 (20 deg for the defaults);
+  /// 0 when a bound is 0 on the level; infinity when neither ever reaches 0. On steeper slopes
+  /// the Segway can neither move nor change its speed.
+  double drivableSlope() const;
   const std::vector<double>& slopes() const { return slopes_; }
 
  private:

@@ -15,6 +15,10 @@
 // curvature changes sign between them, as in a planner's clothoid S-bend); no lethal, no-data
 // or off-map cell under points every cell / 8 on the segment (the planners' footprint: the
 // vehicle's reference point swept along its path).
+// With the Segway RMP's look-ups (TrajectoryRequirements::segway; 001_... III.C): v within the
+// slope's speed bound at every sample; between samples the acceleration within the slope's
+// a_max and the platform pitch it causes (the pitch response of acceleration and slope) within
+// pitch_max.
 // Optionally the first sample is the start and the last lies within the goal's tolerances.
 //
 // This is the check behind every verdict (trajectory_verdict.hpp): the contract's `converged`
@@ -26,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/models/terrain_following_model.hpp"
 #include "terratraj/models/trajectory.hpp"
 #include "terratraj/models/vehicle_limits.hpp"
@@ -40,7 +45,8 @@ struct CheckViolation {
   /// "table_pitch", "table_roll_curvature", "lethal", "no_data", "off_map", "goal_position",
   /// "goal_heading", "goal_speed", "start_position", "start_speed", "time_order", "motion",
   /// "heading_of_motion", "pitch_column", "roll_column", "attitude", "finite", "v_min",
-  /// "omega_equals_v_curvature", "empty".
+  /// "omega_equals_v_curvature", "empty", "segway_slope_v_max", "segway_slope_a_max",
+  /// "segway_platform_pitch".
   std::string limit;
   double amount = 0.0;     ///< excess over the limit, in its units (> 0); 1 for map and structure
   double value = 0.0;      ///< the value found (limit units; 0 for map and structure rules)
@@ -98,6 +104,8 @@ struct TrajectoryRequirements {
   VehicleLimits limits;
   const PitchSpeedTable* pitch_table = nullptr;                   ///< optional: v_max by pitch
   const RollCurvatureSpeedTable* roll_curvature_table = nullptr;  ///< optional
+  /// Optional: the Segway RMP's look-ups, whose rules then apply (see the top of this file).
+  const SegwayLookups* segway = nullptr;
   std::optional<StartRequirement> start;  ///< absent: the first sample is not checked
   std::optional<GoalRequirement> goal;    ///< absent: the last sample is not checked
   CheckTolerances tolerances;

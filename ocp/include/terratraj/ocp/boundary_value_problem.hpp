@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/models/vehicle_limits.hpp"
 #include "terratraj/models/velocity_table.hpp"
 
@@ -52,6 +53,10 @@ struct ControlOrders {
 struct SpeedTables {
   const models::PitchSpeedTable* pitch = nullptr;
   const models::RollCurvatureSpeedTable* roll_curvature = nullptr;
+  /// The Segway RMP's look-ups (001_... III.C: slope speed and acceleration bounds, platform
+  /// pitch): every verdict checks them (models::TrajectoryRequirements::segway). The
+  /// transcriptions hold them as constraints through TranscriptionModelOptions::segway.
+  const models::SegwayLookups* segway = nullptr;
 };
 
 /// One boundary-value problem.

@@ -14,8 +14,9 @@
 // Solvers: shooting / collocation start from a seed's trajectory; the parametric methods
 // (newton, newton_fd, ipopt, ceres) from the polynomial controls fitted to it, through the
 // flat-ground optimum. `auto` uses collocation; when collocation fails from a word, the
-// parametric ipopt from the same word and collocation again from ipopt's trajectory (the ipopt
-// step is listed among the attempts, never the result). Every attempt is verified (the verdict);
+// parametric ipopt from the same word and collocation again from ipopt's trajectory (ipopt's
+// verified result counts too, unless a clearance is asked for: only the transcriptions hold
+// it). Every attempt is verified (the verdict, the Segway's look-ups included);
 // the best converged cost wins; a second word is tried when the first fails or is within
 // `retry_length_ratio` of it. Before any of this, a goal that cannot be reached at all (boxed
 // in by slopes beyond the pitch and roll limits, lethal or no-data cells) is `infeasible` with
