@@ -168,10 +168,17 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
   };
   verify();
   // ipopt holds the limits at path points only: a limit broken between them is held at twice
-  // as many points, from the solution found, up to max_path_points.
+  // as many points, from the solution found, up to max_path_points. (Not the Segway's
+  // look-ups, which it does not model: more points cannot mend those.)
+  const auto breaksAHeldLimit = [&] {
+    const std::vector<models::CheckViolation>& broken = solution.verdict.check.violations;
+    return std::any_of(broken.begin(), broken.end(), [](const models::CheckViolation& v) {
+      return v.limit.rfind("segway_", 0) != 0;
+    });
+  };
   while (options.method == BoundaryValueMethod::kIpopt &&
          solution.solver.status == SolveStatus::kConverged && solution.verified.ok &&
-         solution.verdict.failure == models::VerdictFailure::kBreaksLimits &&
+         solution.verdict.failure == models::VerdictFailure::kBreaksLimits && breaksAHeldLimit() &&
          solution.path_points < options.max_path_points) {
     if (options.time_limit_s && elapsed_ms() >= 1e3 * *options.time_limit_s) break;
     solution.path_points = std::min(2 * solution.path_points - 1, options.max_path_points);
