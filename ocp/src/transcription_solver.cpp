@@ -125,6 +125,30 @@ void verifyTranscription(const TranscriptionModel& model, const ConvergenceCrite
   }
 }
 
+namespace {
+
+// A start that already meets the goal: nothing to drive; the one-row trajectory at the start,
+// judged like any other.
+void stayAtTheStart(const models::TerrainFollowingModel& vehicle,
+                    const BoundaryValueProblem& problem, const TranscriptionSolveOptions& options,
+                    VerifiedTranscription& out) {
+  if (std::optional<models::Trajectory> here = startOnlyTrajectory(vehicle, problem)) {
+    out.verified.ok = true;
+    out.verified.trajectory = std::move(*here);
+    out.verdict =
+        models::judgeTrajectory(out.verified.trajectory,
+                                solveRequirements(vehicle, problem, options.criteria, options.map));
+  }
+  out.status = out.verified.ok ? statusAfterVerdict(SolveStatus::kConverged, out.verdict)
+                               : SolveStatus::kInfeasible;
+  out.solution.result.status = out.status;
+  out.reason = out.status == SolveStatus::kConverged
+                   ? "the start already meets the goal: nothing to drive"
+                   : "the start meets the goal but fails the check: " + out.verdict.reason;
+}
+
+}  // namespace
+
 VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& vehicle,
                                          const BoundaryValueProblem& problem,
                                          const TranscriptionGuess& guess,
@@ -141,20 +165,7 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
     return finish();
   }
   if (startMeetsGoal(problem, options.criteria)) {
-    // Nothing to drive: the one-row trajectory at the start, judged like any other.
-    if (std::optional<models::Trajectory> here = startOnlyTrajectory(vehicle, problem)) {
-      out.verified.ok = true;
-      out.verified.trajectory = std::move(*here);
-      out.verdict = models::judgeTrajectory(
-          out.verified.trajectory,
-          solveRequirements(vehicle, problem, options.criteria, options.map));
-    }
-    out.status = out.verified.ok ? statusAfterVerdict(SolveStatus::kConverged, out.verdict)
-                                 : SolveStatus::kInfeasible;
-    out.solution.result.status = out.status;
-    out.reason = out.status == SolveStatus::kConverged
-                     ? "the start already meets the goal: nothing to drive"
-                     : "the start meets the goal but fails the check: " + out.verdict.reason;
+    stayAtTheStart(vehicle, problem, options, out);
     return finish();
   }
   const Deadline deadline(started, options.time_limit_s, options.stop);
