@@ -11,7 +11,6 @@
 #include "terratraj/apps/refine_command.hpp"
 #include "terratraj/apps/solve_command.hpp"
 #include "terratraj/apps/terrain_commands.hpp"
-#include "terratraj/refine/seeded_solver.hpp"
 #include "terratraj/terrain/input_error.hpp"
 #include "terratraj/terrain/terrain_source.hpp"
 #include "terratraj/terrain/terrain_statistics.hpp"
@@ -126,7 +125,7 @@ nlohmann::json problemJson(const ProblemSpec& problem, const ProblemScene& scene
         {"time_limit_s", problem.solver.time_limit_s ? nlohmann::json(*problem.solver.time_limit_s)
                                                      : nlohmann::json(nullptr)},
         // The search seed's PRM budget (at most half the time left when a limit is set).
-        {"search_time_s", problem.planner.time_limit_s.value_or(refine::kDefaultSearchTimeS)}}},
+        {"search_time_s", searchSeedTime(problem)}}},
       {"planner",
        {{"kind", plannerKindName(problem.planner.kind)},
         {"time_limit_s", planningTimeLimit(problem)},

@@ -7,6 +7,7 @@
 #include "message_number.hpp"
 #include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/models/segway_lookups.hpp"
+#include "terratraj/refine/search_seed.hpp"
 #include "terratraj/terrain/input_error.hpp"
 
 namespace terratraj::apps {
@@ -188,6 +189,12 @@ double latticeResolution(const ProblemSpec& problem, const terrain::GridGeometry
 
 double planningTimeLimit(const ProblemSpec& problem) {
   return problem.planner.time_limit_s.value_or(kDefaultPlanningTimeS);
+}
+
+double searchSeedTime(const ProblemSpec& problem) {
+  refine::SeededSolveOptions options;
+  options.search_time_s = problem.planner.time_limit_s;
+  return refine::searchSeedBudget(options, std::nullopt);
 }
 
 double goalPositionTolerance(const ProblemSpec& problem, const terrain::GridGeometry& geometry) {

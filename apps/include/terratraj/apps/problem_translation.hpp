@@ -65,6 +65,10 @@ inline constexpr double kDefaultPlanningTimeS = 1.0;
 /// `plan`'s wall-clock budget [s]: planner.time_limit_s, else kDefaultPlanningTimeS.
 double planningTimeLimit(const ProblemSpec& problem);
 
+/// `solve`'s search-seed budget before any time is spent [s]: refine::searchSeedBudget of the
+/// options seededSolveOptions() gives (planner.time_limit_s, else refine::kDefaultSearchTimeS).
+double searchSeedTime(const ProblemSpec& problem);
+
 /// The goal region's radius [m]: planner.goal_position_tolerance_m; absent, 0.5 m, and for the
 /// lattice planners at least the distance within which every goal has a lattice position
 /// (spacing / sqrt 2, rounded up to the centimetre: 2.13 m on a 3 m DEM's lattice), so the
