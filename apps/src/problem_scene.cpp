@@ -62,6 +62,7 @@ ProblemScene::ProblemScene(const ProblemSpec& problem, const CommandContext& con
   }
   if (problem.vehicle.model == VehicleModelKind::kSegwayRmp) {
     segway_lookups_ = models::defaultSegwayLookups();
+    search_pitch_table_ = models::slopeSpeedTable(segway_lookups_->bounds, pitchTable());
   }
   vehicle_ = makeTerrainFollowingModel(problem.vehicle.model, surface_);
   start_attitude_ = restingAttitude(*vehicle_, poses_.start, "start", problem);

@@ -174,7 +174,7 @@ search::PlanningProblem planningProblem(const ProblemSpec& problem, const Proble
   query.limits = problem.vehicle.limits;
   query.start = startState(problem, scene.start());
   query.goal = goalRegion(problem, scene.goal(), scene.map().geometry());
-  query.pitch_table = scene.pitchTable();
+  query.pitch_table = scene.searchPitchTable();
   query.roll_curvature_table = scene.rollCurvatureTable();
   if (const std::optional<std::string> error = query.validate()) {
     throw InputError(problem.source_file.string() + ": " + *error);

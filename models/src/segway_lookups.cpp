@@ -39,6 +39,64 @@ double linear(const std::vector<double>& axis, const std::vector<double>& values
   return (1 - t) * values[i] + t * values[i + 1];
 }
 
+// Piecewise linear through (axis, values), continued linearly beyond both ends, with every
+// corner rounded by the parabola tangent to its two pieces over +-delta (C1): delta is 0.5 deg,
+// at most a quarter of either piece. Below the corners that bend down (a bound stricter there),
+// above by at most |change of slope| delta / 4 where they bend up.
+double roundedCorners(const std::vector<double>& axis, const std::vector<double>& values, double x,
+                      double* dx) {
+  constexpr double kDelta = 0.5 * 3.14159265358979323846 / 180.0;  // [rad]
+  const std::size_t n = axis.size();
+  const auto piece_slope = [&](std::size_t i) {
+    return (values[i + 1] - values[i]) / (axis[i + 1] - axis[i]);
+  };
+  std::size_t i =
+      static_cast<std::size_t>(std::upper_bound(axis.begin(), axis.end(), x) - axis.begin());
+  i = std::clamp<std::size_t>(i, 1, n - 1) - 1;  // the piece [axis[i], axis[i + 1]]
+  double f = values[i] + piece_slope(i) * (x - axis[i]);
+  double df = piece_slope(i);
+  // The corners within reach: at axis[i] and axis[i + 1] (interior knots only).
+  for (std::size_t k = std::max<std::size_t>(i, 1); k <= std::min(i + 1, n - 2); ++k) {
+    const double delta =
+        std::min({kDelta, 0.25 * (axis[k] - axis[k - 1]), 0.25 * (axis[k + 1] - axis[k])});
+    const double u = x - axis[k];
+    if (std::abs(u) >= delta) continue;
+    const double bend = piece_slope(k) - piece_slope(k - 1);
+    f += bend * ((u + delta) * (u + delta) / (4.0 * delta) - std::max(0.0, u));
+    df += bend * ((u + delta) / (2.0 * delta) - (u > 0.0 ? 1.0 : 0.0));
+  }
+  if (dx != nullptr) *dx = df;
+  return f;
+}
+
+// C1 cubic Hermite through (axis[i], value(i)), its slopes the differences of the neighbours
+// (one-sided at the ends), continued linearly beyond the ends by the end slopes; the derivative
+// into *dx. Linear in the values.
+template <class Value>
+double hermite(const std::vector<double>& axis, const Value& value, double x, double* dx) {
+  const std::size_t n = axis.size();
+  const auto slope = [&](std::size_t i) {
+    const std::size_t lo = i == 0 ? 0 : i - 1, hi = i + 1 == n ? i : i + 1;
+    return (value(hi) - value(lo)) / (axis[hi] - axis[lo]);
+  };
+  if (!(x > axis.front()) || x >= axis.back()) {
+    const std::size_t end = x >= axis.back() ? n - 1 : 0;
+    const double m = slope(end);
+    *dx = m;
+    return value(end) + m * (x - axis[end]);
+  }
+  const std::size_t i =
+      static_cast<std::size_t>(std::upper_bound(axis.begin(), axis.end(), x) - axis.begin()) - 1;
+  const double h = axis[i + 1] - axis[i], t = (x - axis[i]) / h;
+  const double y0 = value(i), y1 = value(i + 1), m0 = slope(i) * h, m1 = slope(i + 1) * h;
+  const double t2 = t * t, t3 = t2 * t;
+  *dx = ((6 * t2 - 6 * t) * y0 + (3 * t2 - 4 * t + 1) * m0 + (6 * t - 6 * t2) * y1 +
+         (3 * t2 - 2 * t) * m1) /
+        h;
+  return (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * m0 + (3 * t2 - 2 * t3) * y1 +
+         (t3 - t2) * m1;
+}
+
 nlohmann::json readJson(const std::filesystem::path& path, const std::string& kind) {
   std::ifstream in(path);
   if (!in) throw InputError(path.string() + ": cannot be opened for reading");
@@ -82,6 +140,32 @@ SegwayPitchResponse::SegwayPitchResponse(std::vector<double> accelerations,
   }
 }
 
+double SegwayPitchResponse::smoothPitch(double acceleration, double slope, double* d_acceleration,
+                                        double* d_slope) const {
+  // Along the slopes at grid acceleration i, then along the accelerations (a tensor product).
+  const auto along_slopes = [&](std::size_t i, double* d) {
+    const auto value = [&](std::size_t j) {
+      return pitch_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+    };
+    return hermite(slopes_, value, slope, d);
+  };
+  double unused = 0.0, da = 0.0, ds = 0.0;
+  const double p = hermite(
+      accelerations_, [&](std::size_t i) { return along_slopes(i, &unused); }, acceleration, &da);
+  // The derivative by slope: the same weights on the rows' derivatives.
+  ds = hermite(
+      accelerations_,
+      [&](std::size_t i) {
+        double d = 0.0;
+        along_slopes(i, &d);
+        return d;
+      },
+      acceleration, &unused);
+  if (d_acceleration != nullptr) *d_acceleration = da;
+  if (d_slope != nullptr) *d_slope = ds;
+  return p;
+}
+
 double SegwayPitchResponse::pitch(double acceleration, double slope) const {
   const auto [i, s] = locate(accelerations_, acceleration);
   const auto [j, t] = locate(slopes_, slope);
@@ -103,6 +187,7 @@ SegwaySlopeBounds::SegwaySlopeBounds(std::vector<double> slopes, std::vector<dou
       throw InputError("slope bounds: v_max and a_max must be finite and >= 0");
     }
   }
+  buildOptimiserKnots();
 }
 
 double SegwaySlopeBounds::speedLimit(double slope) const { return linear(slopes_, v_max_, slope); }
@@ -123,6 +208,97 @@ double SegwaySlopeBounds::drivableSlope() const {
     if (stopped(slope)) drivable = std::min(drivable, std::abs(slope));
   }
   return drivable;
+}
+
+double SegwaySlopeBounds::optimiserSpeedLimit(double slope, double* d_slope) const {
+  return roundedCorners(optimiser_slopes_, optimiser_v_, slope, d_slope);
+}
+
+double SegwaySlopeBounds::optimiserAccelerationLimit(double slope, double* d_slope) const {
+  return roundedCorners(optimiser_slopes_, optimiser_a_, slope, d_slope);
+}
+
+void SegwaySlopeBounds::buildOptimiserKnots() {
+  const auto stopped = [&](double s) {
+    return !(speedLimit(s) > 0.0) || !(accelerationLimit(s) > 0.0);
+  };
+  // The edge on each side: the grid slope nearest 0 (0 included) where a bound is 0.
+  double edge[2] = {std::numeric_limits<double>::infinity(),
+                    std::numeric_limits<double>::infinity()};  // [downhill, uphill] magnitudes
+  for (const double s : slopes_) {
+    if (stopped(s)) edge[s > 0.0] = std::min(edge[s > 0.0], std::abs(s));
+  }
+  if (stopped(0.0)) edge[0] = edge[1] = 0.0;
+  constexpr double kFar = 1.0;  // [rad] where the continued pieces get their second knot
+  const auto extension = [&](int side, double& knot, double& v, double& a) {
+    const double sign = side == 1 ? 1.0 : -1.0;
+    if (std::isinf(edge[side])) {  // drivable to the end of the grid: constant beyond it
+      knot = side == 1 ? slopes_.back() + kFar : slopes_.front() - kFar;
+      v = speedLimit(knot);
+      a = accelerationLimit(knot);
+      return;
+    }
+    // The last piece before the edge, continued (descending by at least 1 per radian).
+    constexpr double kInside = 1e-6;  // [rad]
+    const double at = sign * edge[side], inside = sign * (edge[side] - kInside);
+    knot = at + sign * kFar;
+    v = speedLimit(at) - kFar * std::max(1.0, (speedLimit(inside) - speedLimit(at)) / kInside);
+    a = accelerationLimit(at) -
+        kFar * std::max(1.0, (accelerationLimit(inside) - accelerationLimit(at)) / kInside);
+  };
+  double knot = 0.0, v = 0.0, a = 0.0;
+  extension(0, knot, v, a);
+  optimiser_slopes_ = {knot};
+  optimiser_v_ = {v};
+  optimiser_a_ = {a};
+  const auto add = [&](double s) {
+    if (s > optimiser_slopes_.back() + 1e-9) {
+      optimiser_slopes_.push_back(s);
+      optimiser_v_.push_back(speedLimit(s));
+      optimiser_a_.push_back(accelerationLimit(s));
+    }
+  };
+  if (std::isfinite(edge[0])) add(-edge[0]);
+  for (const double s : slopes_) {
+    if (s > -edge[0] && s < edge[1]) add(s);
+  }
+  if (std::isfinite(edge[1])) add(edge[1]);
+  extension(1, knot, v, a);
+  optimiser_slopes_.push_back(knot);
+  optimiser_v_.push_back(v);
+  optimiser_a_.push_back(a);
+}
+
+PitchSpeedTable slopeSpeedTable(const SegwaySlopeBounds& bounds, const PitchSpeedTable* also,
+                                double bin_width) {
+  if (!(bin_width > 0.0)) throw InputError("slope speed table: bin_width must be > 0");
+  const std::vector<double>& slopes = bounds.slopes();
+  std::vector<double> edges;
+  for (std::size_t i = 0; i + 1 < slopes.size(); ++i) {
+    const int pieces =
+        std::max(1, static_cast<int>(std::ceil((slopes[i + 1] - slopes[i]) / bin_width)));
+    for (int k = 0; k < pieces; ++k) {
+      edges.push_back(slopes[i] + (slopes[i + 1] - slopes[i]) * k / pieces);
+    }
+  }
+  edges.push_back(slopes.back());
+  if (also != nullptr) {
+    const std::vector<double>& more = also->pitchEdges().edges();
+    edges.insert(edges.end(), more.begin(), more.end());
+    std::sort(edges.begin(), edges.end());
+    // Edges closer than a micro-radian are one edge (the bins must strictly increase).
+    edges.erase(
+        std::unique(edges.begin(), edges.end(), [](double a, double b) { return b - a < 1e-6; }),
+        edges.end());
+  }
+  std::vector<double> v_max;
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    double v = std::min(bounds.speedLimit(edges[i]), bounds.speedLimit(edges[i + 1]));
+    if (also != nullptr) v = std::min(v, also->lookup(0.5 * (edges[i] + edges[i + 1])));
+    v_max.push_back(v);
+  }
+  // Beyond the merged edges both rules clamp to their outermost values, as the table does.
+  return PitchSpeedTable(BinEdges(std::move(edges), "slope speed table"), std::move(v_max));
 }
 
 SegwayLookups defaultSegwayLookups() {

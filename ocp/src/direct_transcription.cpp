@@ -269,8 +269,6 @@ Eigen::VectorXd initialVariables(const TranscriptionNlp& nlp, const BoundaryValu
   return x;
 }
 
-// Exact for collocation, except with the Segway: its look-ups are piecewise bilinear, so
-// their second derivatives are impulses on the grid lines that differences blow up.
 // Ipopt's barrier strategy (TranscriptionBarrier).
 bool setBarrier(Ipopt::OptionsList& ipopt, const DirectTranscriptionOptions& options) {
   if (options.barrier == TranscriptionBarrier::kAdaptive) {
@@ -280,10 +278,12 @@ bool setBarrier(Ipopt::OptionsList& ipopt, const DirectTranscriptionOptions& opt
          ipopt.SetNumericValue("mu_init", options.warm_mu_init);
 }
 
+// Exact for collocation (the Segway's look-ups included: the model takes their C1 versions,
+// SegwayPitchResponse::smoothPitch and SegwaySlopeBounds::optimiserSpeedLimit), limited-memory
+// for shooting.
 TranscriptionHessian defaultHessian(const TranscriptionNlp& nlp) {
-  return nlp.hasExactHessian() && !nlp.model().options().segway
-             ? TranscriptionHessian::kExact
-             : TranscriptionHessian::kLimitedMemory;
+  return nlp.hasExactHessian() ? TranscriptionHessian::kExact
+                               : TranscriptionHessian::kLimitedMemory;
 }
 
 struct SingleSolve {
@@ -355,6 +355,15 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
     out.reason += " (last evaluation: " + nlp.message() + ")";
   }
   return out;
+}
+
+// Whether a solve with the default exact Hessian on the Segway ended locally infeasible or at
+// its iteration limit (not its time limit): solveDirectTranscription then tries L-BFGS once.
+bool retriesWithLimitedMemory(const TranscriptionNlp& nlp,
+                              const DirectTranscriptionOptions& options, const SingleSolve& solve) {
+  return !options.hessian && nlp.model().options().segway &&
+         defaultHessian(nlp) == TranscriptionHessian::kExact && !solve.time_limit_reached &&
+         (solve.status == SolveStatus::kInfeasible || solve.status == SolveStatus::kMaxIterations);
 }
 
 void fillSolution(TranscriptionNlp& nlp, const SingleSolve& solve, TranscriptionSolution& out) {
@@ -525,14 +534,27 @@ TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingMod
     // A twentieth of a cell: see TranscriptionLayout::hessian_position_step.
     layout.hessian_position_step = 0.05 * vehicle.surface().map().geometry().cell;
     // The iteration records are appended inside Ipopt's callback: no allocation there.
+    // (A round may take two solves: retriesWithLimitedMemory.)
     out.result.history.reserve(static_cast<std::size_t>(options.max_iterations + 1) *
-                               static_cast<std::size_t>(options.refinement.max_rounds + 1));
+                               static_cast<std::size_t>(options.refinement.max_rounds + 2));
     TranscriptionGuess current = guess;
     int total_iterations = 0;
     for (int round = 0;; ++round) {
       TranscriptionNlp nlp(model, layout);
       const Eigen::VectorXd x0 = initialVariables(nlp, problem, current);
-      const SingleSolve solve = solveOnce(nlp, problem, x0, options, started, out.result.history);
+      SingleSolve solve = solveOnce(nlp, problem, x0, options, started, out.result.history);
+      if (retriesWithLimitedMemory(nlp, options, solve)) {
+        // The Segway's look-ups are only C1: where the exact Hessian's steps end locally
+        // infeasible or stall, L-BFGS from the same start often gets through.
+        total_iterations += solve.iterations;
+        DirectTranscriptionOptions limited_memory = options;
+        limited_memory.hessian = TranscriptionHessian::kLimitedMemory;
+        const std::string first = solve.reason;
+        solve = solveOnce(nlp, problem, x0, limited_memory, started, out.result.history);
+        if (solve.status != SolveStatus::kConverged) {
+          solve.reason += " (L-BFGS, after the exact Hessian's " + first + ")";
+        }
+      }
       total_iterations += solve.iterations;
       out.ipopt_status = solve.ipopt_status;
       fillSolution(nlp, solve, out);

@@ -10,8 +10,6 @@ enum Var { kX = 0, kY, kHeading, kV, kOmega, kVDot, kOmegaDot };
 
 // PathConstraints rows of the terrain pitch (replaced by the platform pitch on the Segway).
 constexpr int kPitchRow = 10;
-// Step of the central differences through the Segway's piecewise-linear look-ups [m/s^2, rad].
-constexpr double kLookupStep = 1e-6;
 
 const char* const kSegwayRowNames[3] = {"segway_slope_v_max", "segway_slope_a_max",
                                         "segway_slope_a_max"};
@@ -73,15 +71,10 @@ models::AttitudeStatus TranscriptionModel::evaluate(const PointVector& w,
   // terrain pitch; its derivative by v' is added to the pitch rows below.
   double d_platform_da = 0.0;
   if (options_.segway) {
+    // Its C1 version (the verdict judges by the grid's bilinear look-up).
     const models::SegwayPitchResponse& response = options_.segway->lookups.pitch_response;
-    const double a = w(kVDot);
-    out.platform_pitch = response.pitch(a, pitch);
-    d_platform_da =
-        (response.pitch(a + kLookupStep, pitch) - response.pitch(a - kLookupStep, pitch)) /
-        (2.0 * kLookupStep);
-    const double d_platform_ds =
-        (response.pitch(a, pitch + kLookupStep) - response.pitch(a, pitch - kLookupStep)) /
-        (2.0 * kLookupStep);
+    double d_platform_ds = 0.0;
+    out.platform_pitch = response.smoothPitch(w(kVDot), pitch, &d_platform_da, &d_platform_ds);
     p.attitude.attitude.pitch = out.platform_pitch;
     p.attitude.jacobian.row(2) = d_platform_ds * d_pitch;
   }
@@ -93,15 +86,12 @@ models::AttitudeStatus TranscriptionModel::evaluate(const PointVector& w,
     out.constraint_jacobian(kPitchRow + 1 - kFirstPathRow, kVDot) -= d_platform_da;
     const models::SegwaySlopeBounds& bounds = options_.segway->lookups.bounds;
     const double scale = options_.segway->bound_scale;
-    const double v_limit = scale * bounds.speedLimit(pitch);
-    const double a_limit = scale * bounds.accelerationLimit(pitch);
-    const double dv_ds =
-        scale * (bounds.speedLimit(pitch + kLookupStep) - bounds.speedLimit(pitch - kLookupStep)) /
-        (2.0 * kLookupStep);
-    const double da_ds = scale *
-                         (bounds.accelerationLimit(pitch + kLookupStep) -
-                          bounds.accelerationLimit(pitch - kLookupStep)) /
-                         (2.0 * kLookupStep);
+    // C1, and continued below 0 on undrivable slopes: a direction back to drivable ground.
+    double dv_ds = 0.0, da_ds = 0.0;
+    const double v_limit = scale * bounds.optimiserSpeedLimit(pitch, &dv_ds);
+    const double a_limit = scale * bounds.optimiserAccelerationLimit(pitch, &da_ds);
+    dv_ds *= scale;
+    da_ds *= scale;
     const int row = path_rows_;
     out.constraints(row) = w(kV) - v_limit;
     out.constraints(row + 1) = w(kVDot) - a_limit;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/refine/candidate_refiner.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/planning_problem.hpp"
@@ -26,6 +27,12 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
   search::PlanningProblem query(map, vehicle);
   query.limits = problem.limits;
   query.pitch_table = problem.tables.pitch;
+  // The Segway's speed bound by slope, as the search takes it: a seed it can drive.
+  std::optional<models::PitchSpeedTable> segway_table;
+  if (problem.tables.segway != nullptr) {
+    segway_table = models::slopeSpeedTable(problem.tables.segway->bounds, problem.tables.pitch);
+    query.pitch_table = &*segway_table;
+  }
   query.roll_curvature_table = problem.tables.roll_curvature;
   query.start.position = {problem.start.x, problem.start.y};
   query.start.heading = problem.start.heading;

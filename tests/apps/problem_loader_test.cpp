@@ -13,7 +13,10 @@
 #include <string>
 #include <vector>
 
+#include <spdlog/spdlog.h>
+
 #include "problem_loader_fixture.hpp"
+#include "terratraj/apps/problem_scene.hpp"
 #include "terratraj/apps/problem_translation.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
 #include "terratraj/terrain/grid_geometry.hpp"
@@ -355,6 +358,32 @@ TEST(ProblemPoses, LethalCell) {
   EXPECT_THAT(resolveError(p, map),
               HasSubstr("problem.yaml: start: (x, y) = (1.25, 1.25) m is on a lethal cell "
                         "(row 2, col 2)"));
+}
+
+// The searches (plan, and the search seed of solve) hold the Segway's speed bound by slope: a
+// pitch table never faster than it, 0 where it cannot drive; other vehicles get the problem's own.
+TEST(ProblemScene, TheSearchesHoldTheSegwaysSpeedBoundBySlope) {
+  const std::string segway = R"(terrain: {generate: {kind: flat, rows: 64, cols: 64, cell: 0.25}}
+vehicle: {model: segway_rmp}
+start: {x: 2, y: 2, heading: 0}
+goal: {x: 12, y: 12, heading: 0}
+)";
+  std::ostringstream ignore;
+  CommandContext context{ignore, ignore, false, std::make_shared<spdlog::logger>("quiet"), nullptr};
+  const ProblemSpec problem = parse(segway);
+  const ProblemScene scene(problem, context);
+  const search::PlanningProblem query = planningProblem(problem, scene);
+  ASSERT_NE(query.pitch_table, nullptr);
+  EXPECT_EQ(query.pitch_table->lookup(21.0 * kDeg), 0.0);
+  EXPECT_EQ(query.pitch_table->lookup(-21.0 * kDeg), 0.0);
+  EXPECT_DOUBLE_EQ(query.pitch_table->lookup(0.0), 3.5);
+  EXPECT_LE(query.pitch_table->lookup(18.0 * kDeg),
+            scene.segwayLookups()->bounds.speedLimit(18.0 * kDeg));
+
+  const ProblemSpec point =
+      parse(std::string(segway).replace(segway.find("segway_rmp"), 10, "point"));
+  const ProblemScene point_scene(point, context);
+  EXPECT_EQ(planningProblem(point, point_scene).pitch_table, nullptr);
 }
 
 }  // namespace

@@ -99,6 +99,131 @@ TEST(SegwayLookups, DrivableSlopeIsWhereTheBoundsEnd) {
   EXPECT_TRUE(std::isinf(everywhere.drivableSlope()));
 }
 
+// The optimisers' bounds: the look-ups on drivable slopes (at their rounded corners below them
+// where they bend down, barely above where they bend up; equal away from the corners), C1,
+// continued below 0 beyond the edge (the last piece's descent, continuous there), on each side by
+// its own edge.
+TEST(SegwayLookups, TheOptimisersBoundsPointBackToDrivableGround) {
+  const SegwaySlopeBounds& bounds = defaultSegwayLookups().bounds;
+  const double deg = M_PI / 180.0;
+  for (double d = -19.95; d <= 19.95; d += 0.05) {
+    const double s = d * deg;
+    EXPECT_LE(bounds.optimiserSpeedLimit(s), bounds.speedLimit(s) + 1e-12) << d;
+    // a_max = 2 - g sin|slope| / 2 between grid points bends up slightly at 10 deg.
+    EXPECT_LE(bounds.optimiserAccelerationLimit(s), bounds.accelerationLimit(s) + 1e-3) << d;
+    const bool near_a_corner = std::abs(std::abs(d) - 5.0) < 0.5 ||
+                               std::abs(std::abs(d) - 10.0) < 0.5 ||
+                               std::abs(std::abs(d) - 17.0) < 0.5 || std::abs(d) < 0.5;
+    if (!near_a_corner) {
+      EXPECT_NEAR(bounds.optimiserSpeedLimit(s), bounds.speedLimit(s), 1e-9) << d;
+      EXPECT_NEAR(bounds.optimiserAccelerationLimit(s), bounds.accelerationLimit(s), 1e-9) << d;
+    }
+    // C1: the one-sided slopes agree everywhere.
+    const double h = 1e-7;
+    const auto slope_of = [&](double a, double b) {
+      return (bounds.optimiserSpeedLimit(b) - bounds.optimiserSpeedLimit(a)) / (b - a);
+    };
+    EXPECT_NEAR(slope_of(s - h, s), slope_of(s, s + h), 1e-3) << d;
+  }
+  // 1 m/s over the 3 deg from 17 to 20 deg, continued.
+  EXPECT_NEAR(bounds.optimiserSpeedLimit(23.0 * deg), -1.0, 1e-6);
+  EXPECT_NEAR(bounds.optimiserSpeedLimit(-23.0 * deg), -1.0, 1e-6);
+  EXPECT_NEAR(bounds.optimiserSpeedLimit(20.0 * deg + 1e-9), 0.0, 1e-6);
+  EXPECT_LT(bounds.optimiserAccelerationLimit(21.0 * deg), 0.0);
+  EXPECT_GT(bounds.optimiserAccelerationLimit(21.0 * deg),
+            bounds.optimiserAccelerationLimit(22.0 * deg));
+  // Asymmetric: drivable to 0.1 rad uphill, 0.2 rad downhill.
+  const SegwaySlopeBounds tilted({-0.2, 0.0, 0.1}, {0.0, 1.0, 0.0}, {0.0, 1.0, 0.0});
+  EXPECT_NEAR(tilted.optimiserSpeedLimit(-0.15), 0.25, 1e-12);
+  EXPECT_NEAR(tilted.optimiserSpeedLimit(-0.3), -0.5, 1e-6);
+  EXPECT_NEAR(tilted.optimiserSpeedLimit(0.15), -0.5, 1e-6);
+  // Drivable everywhere: the ends of the grid hold beyond it.
+  const SegwaySlopeBounds everywhere({-0.1, 0.1}, {1.0, 2.0}, {1.0, 1.0});
+  EXPECT_NEAR(everywhere.optimiserSpeedLimit(0.5), 2.0, 1e-12);
+  EXPECT_NEAR(everywhere.optimiserSpeedLimit(-0.5), 1.0, 1e-12);
+}
+
+// The optimisers' versions of the look-ups against their finite-difference twins, and the C1
+// platform pitch through the grid's values, close to the bilinear look-up between them.
+TEST(SegwayLookups, TheOptimisersVersionsHaveTheirDerivatives) {
+  const SegwayLookups lookups = defaultSegwayLookups();
+  const double deg = M_PI / 180.0, h = 1e-6;
+  double worst_departure = 0.0;
+  for (double a = -2.4; a <= 2.4; a += 0.0625) {
+    for (double d = -24.0; d <= 24.0; d += 0.37) {
+      const double s = d * deg;
+      double d_a = 0.0, d_s = 0.0;
+      const double p = lookups.pitch_response.smoothPitch(a, s, &d_a, &d_s);
+      const double fd_a = (lookups.pitch_response.smoothPitch(a + h, s) -
+                           lookups.pitch_response.smoothPitch(a - h, s)) /
+                          (2 * h);
+      const double fd_s = (lookups.pitch_response.smoothPitch(a, s + h) -
+                           lookups.pitch_response.smoothPitch(a, s - h)) /
+                          (2 * h);
+      EXPECT_NEAR(d_a, fd_a, 1e-5) << a << " " << d;
+      EXPECT_NEAR(d_s, fd_s, 1e-5) << a << " " << d;
+      if (std::abs(a) <= 2.0 && std::abs(d) <= 20.0) {
+        worst_departure =
+            std::max(worst_departure, std::abs(p - lookups.pitch_response.pitch(a, s)));
+      }
+    }
+  }
+  EXPECT_LT(worst_departure, 0.3 * deg);
+  // Through the grid values.
+  EXPECT_NEAR(lookups.pitch_response.smoothPitch(0.5, 10.0 * deg),
+              lookups.pitch_response.pitch(0.5, 10.0 * deg), 1e-12);
+  for (double d = -24.0; d <= 24.0; d += 0.11) {
+    const double s = d * deg;
+    double dv = 0.0, da = 0.0;
+    lookups.bounds.optimiserSpeedLimit(s, &dv);
+    lookups.bounds.optimiserAccelerationLimit(s, &da);
+    const double near_knot = std::remainder(d, 1.0);  // knots at whole degrees
+    if (std::abs(near_knot) < 1e-3) continue;         // the difference straddles a corner's edge
+    EXPECT_NEAR(
+        dv,
+        (lookups.bounds.optimiserSpeedLimit(s + h) - lookups.bounds.optimiserSpeedLimit(s - h)) /
+            (2 * h),
+        1e-4)
+        << d;
+    EXPECT_NEAR(da,
+                (lookups.bounds.optimiserAccelerationLimit(s + h) -
+                 lookups.bounds.optimiserAccelerationLimit(s - h)) /
+                    (2 * h),
+                1e-4)
+        << d;
+  }
+}
+
+// The searches' pitch table of the look-ups: never faster than the bound at any slope, within
+// a bin's worth of it, 0 where the Segway cannot drive; with a user's table, the lower of both.
+TEST(SegwayLookups, TheSearchesTableIsNeverFasterThanTheBound) {
+  const SegwaySlopeBounds& bounds = defaultSegwayLookups().bounds;
+  const double bin = 0.25 * M_PI / 180.0;
+  const PitchSpeedTable table = slopeSpeedTable(bounds, nullptr, bin);
+  double worst_gap = 0.0;
+  for (int i = -4000; i <= 4000; ++i) {
+    const double slope = i * 0.5 * M_PI / 180.0 / 100.0;  // -20..20 deg and beyond
+    const double exact = bounds.speedLimit(slope);
+    ASSERT_LE(table.lookup(slope), exact + 1e-12) << slope;
+    worst_gap = std::max(worst_gap, exact - table.lookup(slope));
+  }
+  // The steepest piece of the defaults: 1 m/s over 3 deg.
+  EXPECT_LE(worst_gap, bin * (1.0 / (3.0 * M_PI / 180.0)) + 1e-9);
+  EXPECT_EQ(table.lookup(21.0 * M_PI / 180.0), 0.0);
+  EXPECT_EQ(table.lookup(-30.0 * M_PI / 180.0), 0.0);
+  EXPECT_DOUBLE_EQ(table.lookup(0.01), 3.5);
+
+  const PitchSpeedTable user(BinEdges({-0.3, 0.0, 0.05, 0.3}, "user"), {2.0, 0.8, 3.0});
+  const PitchSpeedTable both = slopeSpeedTable(bounds, &user, bin);
+  for (int i = -400; i <= 400; ++i) {
+    const double slope = i * 0.001;
+    EXPECT_LE(both.lookup(slope), std::min(user.lookup(slope), bounds.speedLimit(slope)) + 1e-12);
+  }
+  EXPECT_DOUBLE_EQ(both.lookup(0.02), 0.8);
+  EXPECT_DOUBLE_EQ(both.lookup(-0.02), 2.0);
+  EXPECT_THROW(slopeSpeedTable(bounds, nullptr, 0.0), InputError);
+}
+
 // Straight up a ramp of `slope` along +x from rest-free speed v0 with acceleration a, rows
 // every 0.1 s, the attitude columns from the point model (what a solver would write).
 Trajectory straightUp(const TerrainFollowingModel& vehicle, double slope, double v0, double a) {

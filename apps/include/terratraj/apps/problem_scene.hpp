@@ -48,6 +48,12 @@ class ProblemScene {
   const models::SegwayLookups* segwayLookups() const {
     return segway_lookups_ ? &*segway_lookups_ : nullptr;
   }
+  /// The speed limit by pitch the searches hold: the Segway's speed bound by slope
+  /// (models::slopeSpeedTable, with the problem's pitch table when it names one) for that
+  /// vehicle, else pitchTable().
+  const models::PitchSpeedTable* searchPitchTable() const {
+    return search_pitch_table_ ? &*search_pitch_table_ : pitchTable();
+  }
   /// The vehicle at rest at the start and at the goal.
   const models::AttitudeResult& startAttitude() const { return start_attitude_; }
   const models::AttitudeResult& goalAttitude() const { return goal_attitude_; }
@@ -58,6 +64,7 @@ class ProblemScene {
   std::optional<models::PitchSpeedTable> pitch_table_;
   std::optional<models::RollCurvatureSpeedTable> roll_table_;
   std::optional<models::SegwayLookups> segway_lookups_;
+  std::optional<models::PitchSpeedTable> search_pitch_table_;
   terrain::TerrainSurface surface_;
   std::unique_ptr<models::TerrainFollowingModel> vehicle_;
   models::AttitudeResult start_attitude_, goal_attitude_;

@@ -22,6 +22,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "terratraj/models/velocity_table.hpp"
+
 namespace terratraj::models {
 
 /// Platform pitch [rad] by acceleration [m/s^2] and slope [rad], bilinear on a grid.
@@ -34,6 +36,13 @@ class SegwayPitchResponse {
                       Eigen::MatrixXd pitch);
   /// Pitch at (acceleration, slope), clamped to the grid.
   double pitch(double acceleration, double slope) const;
+  /// The same grid as optimisers take it [rad], continuously differentiable: the tensor product
+  /// of cubic Hermite pieces through the grid values (their slopes the differences of the
+  /// neighbours), continued linearly beyond the grid; its derivatives into *d_acceleration
+  /// [rad s^2 / m] and *d_slope when not null. Within the grid it departs from pitch() by the
+  /// curvature of the data between grid points (for the defaults, under 0.3 deg).
+  double smoothPitch(double acceleration, double slope, double* d_acceleration = nullptr,
+                     double* d_slope = nullptr) const;
   const std::vector<double>& accelerations() const { return accelerations_; }
   const std::vector<double>& slopes() const { return slopes_; }
   const Eigen::MatrixXd& values() const { return pitch_; }
@@ -58,10 +67,28 @@ class SegwaySlopeBounds {
   /// 0 when a bound is 0 on the level; infinity when neither ever reaches 0. On steeper slopes
   /// the Segway can neither move nor change its speed.
   double drivableSlope() const;
+  /// speedLimit() [m/s] and accelerationLimit() [m/s^2] as an optimiser's constraints take
+  /// them (continuously differentiable, and with a direction back to drivable ground):
+  ///  - up to the first slope, on the side of 0 of `slope`, where either bound is 0 (the edge of
+  ///    drivable ground), the look-ups with every corner rounded over +-0.5 deg (by a parabola
+  ///    tangent to both pieces: below the look-up where it bends down, as the defaults do
+  ///    everywhere, above by at most |change of slope| * 0.5 deg / 4 where it bends up);
+  ///  - beyond the edge, the bound's last piece before it continued below 0 (descending by at
+  ///    least 1 per radian). The look-ups are flat at 0 there, which gives a point on an
+  ///    undrivable slope no direction back; continued, its row is broken with a gradient
+  ///    towards drivable ground. Beyond the edge the Segway cannot drive with either.
+  /// A solution is judged by speedLimit() and accelerationLimit() (the verdict).
+  /// Their derivatives by slope into *d_slope when not null.
+  double optimiserSpeedLimit(double slope, double* d_slope = nullptr) const;
+  double optimiserAccelerationLimit(double slope, double* d_slope = nullptr) const;
   const std::vector<double>& slopes() const { return slopes_; }
 
  private:
+  void buildOptimiserKnots();
+
   std::vector<double> slopes_, v_max_, a_max_;
+  /// The optimisers' bounds: the grid between the edges, the continued pieces beyond them.
+  std::vector<double> optimiser_slopes_, optimiser_v_, optimiser_a_;
 };
 
 /// Both look-ups.
@@ -69,6 +96,17 @@ struct SegwayLookups {
   SegwayPitchResponse pitch_response;
   SegwaySlopeBounds bounds;
 };
+
+/// The Segway's speed bound by slope as a pitch table (PitchSpeedTable), for the searches, which
+/// take speed limits by pitch that way (the pitch of a terrain-following pose is the slope
+/// along its heading). Never faster than `bounds` anywhere: each interval between the bounds'
+/// slopes is cut into bins of at most `bin_width` [rad], each holding the lower bound of its two
+/// ends (the bound is linear between them); beyond the outermost slopes the outermost values
+/// hold, as in speedLimit(). With `also` (a user's pitch table), the table is the lower of the
+/// two in every bin (their edges merged). The default bins, 0.25 deg, lose at most 0.05 m/s of
+/// the defaults' bound. Throws InputError unless bin_width > 0.
+PitchSpeedTable slopeSpeedTable(const SegwaySlopeBounds& bounds, const PitchSpeedTable* also,
+                                double bin_width = 0.25 * 3.14159265358979323846 / 180.0);
 
 /// The built-in stand-ins described above.
 SegwayLookups defaultSegwayLookups();

@@ -62,8 +62,10 @@ struct DirectTranscriptionOptions {
   /// The curvature rows at a start or goal at rest (TranscriptionLayout::rest_curvature).
   bool rest_curvature = false;
   int intervals = 40;  ///< N, >= 1
-  /// Unset: exact for collocation, limited-memory for shooting and for the Segway (whose
-  /// piecewise-bilinear look-ups have no useful second derivatives).
+  /// Unset: exact for collocation (with the Segway too: the model takes the C1 versions of its
+  /// look-ups), limited-memory for shooting. With the Segway, a solve that ends locally
+  /// infeasible or at max_iterations (not at the time limit) is tried once more with
+  /// limited-memory from the same start (the reason says so when that fails too).
   std::optional<TranscriptionHessian> hessian;
   TranscriptionScaling scaling = TranscriptionScaling::kUser;
   double min_final_time = 1e-2;  ///< lower bound of t_f [s], > 0

@@ -38,7 +38,10 @@ using ConstraintJacobian = Eigen::Matrix<double, Eigen::Dynamic, kPointSize>;
 
 /// The Segway RMP's extra constraints (001_... III.C): its platform pitch (from the look-up of
 /// acceleration and slope) replaces the terrain pitch in the pitch rows, and the speed and
-/// acceleration are bounded by the slope look-ups.
+/// acceleration are bounded by the slope look-ups. The rows take the look-ups' C1 versions
+/// (models::SegwayPitchResponse::smoothPitch, SegwaySlopeBounds::optimiserSpeedLimit and
+/// optimiserAccelerationLimit: second derivatives for the exact Hessian, a way back from
+/// undrivable slopes); accumulateViolation() judges by the look-ups themselves.
 struct SegwayConstraints {
   models::SegwayLookups lookups;
   /// The slope-dependent speed and acceleration bounds times this, in (0, 1] (the verification
