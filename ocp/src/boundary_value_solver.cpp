@@ -52,7 +52,7 @@ SolveResult runSolver(const models::TerrainFollowingModel& vehicle,
     }
     case BoundaryValueMethod::kIpopt: {
       ParametricTrajectoryModel model(vehicle, problem, model_options);
-      const PathConstraints constraints(problem.limits, problem.tables);
+      const PathConstraints constraints(problem.limits, problem.tables, options.segway_bound_scale);
       IpoptOptions ipopt;
       ipopt.criteria = options.criteria;
       ipopt.max_iterations = options.max_iterations;
@@ -167,18 +167,12 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
     verification_ms += elapsed_ms() - before;
   };
   verify();
-  // ipopt holds the limits at path points only: a limit broken between them is held at twice
-  // as many points, from the solution found, up to max_path_points. (Not the Segway's
-  // look-ups, which it does not model: more points cannot mend those.)
-  const auto breaksAHeldLimit = [&] {
-    const std::vector<models::CheckViolation>& broken = solution.verdict.check.violations;
-    return std::any_of(broken.begin(), broken.end(), [](const models::CheckViolation& v) {
-      return v.limit.rfind("segway_", 0) != 0;
-    });
-  };
+  // ipopt holds the limits at path points only (the Segway's look-ups included, by their C1
+  // versions): a limit broken between them is held at twice as many points, from the solution
+  // found, up to max_path_points.
   while (options.method == BoundaryValueMethod::kIpopt &&
          solution.solver.status == SolveStatus::kConverged && solution.verified.ok &&
-         solution.verdict.failure == models::VerdictFailure::kBreaksLimits && breaksAHeldLimit() &&
+         solution.verdict.failure == models::VerdictFailure::kBreaksLimits &&
          solution.path_points < options.max_path_points) {
     if (options.time_limit_s && elapsed_ms() >= 1e3 * *options.time_limit_s) break;
     solution.path_points = std::min(2 * solution.path_points - 1, options.max_path_points);

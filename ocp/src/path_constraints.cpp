@@ -10,21 +10,27 @@ namespace {
 // Variable indices of a PathPoint.
 enum Var { kX = 0, kY, kHeading, kV, kOmega, kVDot, kOmegaDot };
 
-constexpr std::array<const char*, 16> kRowNames{
-    "v_max",     "v_min",     "a_max",       "a_max",
-    "omega_max", "omega_max", "kappa_max",   "kappa_max",
-    "sigma_max", "sigma_max", "pitch_max",   "pitch_max",
-    "roll_max",  "roll_max",  "table_pitch", "table_roll_curvature"};
+constexpr std::array<const char*, 14> kRowNames{
+    "v_max",     "v_min",     "a_max",     "a_max",     "omega_max", "omega_max", "kappa_max",
+    "kappa_max", "sigma_max", "sigma_max", "pitch_max", "pitch_max", "roll_max",  "roll_max"};
+constexpr std::array<const char*, kSegwayPathRows> kSegwayRowNames{
+    "segway_slope_v_max", "segway_slope_a_max", "segway_slope_a_max", "segway_platform_pitch",
+    "segway_platform_pitch"};
 
 // Below this speed [m/s] curvature is not defined; the table's curvature argument is clamped.
 constexpr double kMinCurvatureSpeed = 0.05;
 
 }  // namespace
 
-PathConstraints::PathConstraints(const models::VehicleLimits& limits, const SpeedTables& tables)
-    : limits_(limits), tables_(tables), count_(14) {
-  if (tables_.pitch != nullptr) ++count_;
-  if (tables_.roll_curvature != nullptr) ++count_;
+PathConstraints::PathConstraints(const models::VehicleLimits& limits, const SpeedTables& tables,
+                                 double segway_bound_scale)
+    : limits_(limits), tables_(tables), count_(14), segway_bound_scale_(segway_bound_scale) {
+  if (tables_.pitch != nullptr) pitch_table_row_ = count_++;
+  if (tables_.roll_curvature != nullptr) roll_curvature_row_ = count_++;
+  if (tables_.segway != nullptr) {
+    segway_row_ = count_;
+    count_ += kSegwayPathRows;
+  }
 }
 
 bool vanishesAtRest(std::string_view limit) {
@@ -33,8 +39,9 @@ bool vanishesAtRest(std::string_view limit) {
 
 const char* PathConstraints::name(int row) const {
   if (row < 14) return kRowNames[static_cast<std::size_t>(row)];
-  if (row == 14 && tables_.pitch != nullptr) return kRowNames[14];
-  return kRowNames[15];
+  if (row == pitch_table_row_) return "table_pitch";
+  if (row == roll_curvature_row_) return "table_roll_curvature";
+  return kSegwayRowNames[static_cast<std::size_t>(row - segway_row_)];
 }
 
 void PathConstraints::evaluate(const PathPoint& p, double* g,
@@ -86,15 +93,16 @@ void PathConstraints::evaluate(const PathPoint& p, double* g,
     jac->block<1, 3>(12, 0) = d_roll;
     jac->block<1, 3>(13, 0) = -d_roll;
   }
-  int row = 14;
   if (tables_.pitch != nullptr) {
+    const int row = pitch_table_row_;
     double d = 0.0;
     g[row] = p.v - tables_.pitch->smoothLookup(pitch, &d);
     set(row, kV, 1.0);
     if (jac != nullptr) jac->block<1, 3>(row, 0) = -d * d_pitch;
-    ++row;
   }
+  if (tables_.segway != nullptr) evaluateSegway(p, g, jac);
   if (tables_.roll_curvature != nullptr) {
+    const int row = roll_curvature_row_;
     const double v = std::max(p.v, kMinCurvatureSpeed);
     const double kappa = p.omega / v;
     double d_r = 0.0, d_k = 0.0;
@@ -104,6 +112,38 @@ void PathConstraints::evaluate(const PathPoint& p, double* g,
       (*jac)(row, kOmega) = -d_k / v;
       jac->block<1, 3>(row, 0) = -d_r * d_roll;
     }
+  }
+}
+
+void PathConstraints::evaluateSegway(
+    const PathPoint& p, double* g,
+    Eigen::Matrix<double, Eigen::Dynamic, kPathVariables>* jac) const {
+  const models::SegwayLookups& segway = *tables_.segway;
+  const double slope = p.attitude.attitude.pitch;  // along the heading, nose up > 0
+  const Eigen::RowVector3d d_slope = p.attitude.jacobian.row(2);
+  double dv_ds = 0.0, da_ds = 0.0, dp_da = 0.0, dp_ds = 0.0;
+  const double scale = segway_bound_scale_;
+  const double v_limit = scale * segway.bounds.optimiserSpeedLimit(slope, &dv_ds);
+  const double a_limit = scale * segway.bounds.optimiserAccelerationLimit(slope, &da_ds);
+  dv_ds *= scale;
+  da_ds *= scale;
+  const double platform = segway.pitch_response.smoothPitch(p.v_dot, slope, &dp_da, &dp_ds);
+  const int row = segway_row_;
+  g[row] = p.v - v_limit;
+  g[row + 1] = p.v_dot - a_limit;
+  g[row + 2] = -p.v_dot - a_limit;
+  g[row + 3] = platform - limits_.pitch_max;
+  g[row + 4] = -platform - limits_.pitch_max;
+  if (jac == nullptr) return;
+  (*jac)(row, kV) = 1.0;
+  jac->block<1, 3>(row, 0) = -dv_ds * d_slope;
+  (*jac)(row + 1, kVDot) = 1.0;
+  jac->block<1, 3>(row + 1, 0) = -da_ds * d_slope;
+  (*jac)(row + 2, kVDot) = -1.0;
+  jac->block<1, 3>(row + 2, 0) = -da_ds * d_slope;
+  for (int sign = 1, r = row + 3; r <= row + 4; ++r, sign = -1) {
+    (*jac)(r, kVDot) = sign * dp_da;
+    jac->block<1, 3>(r, 0) = sign * dp_ds * d_slope;
   }
 }
 

@@ -14,6 +14,13 @@ constexpr int kPitchRow = 10;
 const char* const kSegwayRowNames[3] = {"segway_slope_v_max", "segway_slope_a_max",
                                         "segway_slope_a_max"};
 
+// The tables the path rows hold: the Segway's look-ups are this model's own rows
+// (TranscriptionModelOptions::segway), with the platform pitch in the pitch rows.
+SpeedTables pathTables(SpeedTables tables) {
+  tables.segway = nullptr;
+  return tables;
+}
+
 }  // namespace
 
 TranscriptionModel::TranscriptionModel(const models::TerrainFollowingModel& vehicle,
@@ -22,7 +29,7 @@ TranscriptionModel::TranscriptionModel(const models::TerrainFollowingModel& vehi
     : kinematics_(vehicle),
       problem_(problem),
       options_(options),
-      path_(problem.limits, problem.tables),
+      path_(problem.limits, pathTables(problem.tables)),
       path_rows_(path_.count() - kFirstPathRow),
       segway_rows_(options.segway ? 3 : 0),
       count_(path_rows_ + segway_rows_ + (options.clearance.map != nullptr ? 1 : 0)) {}

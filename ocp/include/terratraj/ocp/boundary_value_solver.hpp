@@ -47,6 +47,9 @@ struct BoundaryValueOptions {
   /// ipopt: when the check finds a limit broken between path points, the solve is repeated
   /// from its solution with twice as many points (2 n - 1), up to this many, >= path_points.
   int max_path_points = 321;
+  /// ipopt: the Segway's slope speed and acceleration bounds are held times this, in (0, 1]:
+  /// a margin for the look-ups between path points (the check judges by the look-ups).
+  double segway_bound_scale = 0.99;
   /// ipopt: t_f at most this times the initial guess's t_f (0: unbounded), >= 1 or 0. A local
   /// solve has no use for a final time far beyond its seed's.
   double max_final_time_ratio = 5.0;

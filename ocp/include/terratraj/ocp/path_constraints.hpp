@@ -10,6 +10,9 @@
 //   curvature rate: +-(omega' v - omega v') - sigma_max v^2   (|d kappa / dt| <= sigma_max)
 //   pitch, roll:    +-pitch - pitch_max, +-roll - roll_max
 //   tables:         v - table_pitch(pitch), v - table_rc(roll, kappa)   (smooth look-ups)
+//   Segway RMP:     v - v_max(slope), +-v' - a_max(slope), +-platform_pitch(v', slope) - pitch_max
+//                   (SpeedTables::segway; the C1 optimiser versions of its look-ups, slope = the
+//                   terrain pitch along the heading; models::SegwayLookups)
 // The point's variables are p = (x, y, heading, v, omega, v', omega'); roll and pitch enter
 // through the terrain-following model's attitude Jacobian.
 
@@ -32,6 +35,8 @@ struct PathPoint {
 
 /// Number of variables of a PathPoint the constraints depend on.
 inline constexpr int kPathVariables = 7;
+/// Rows the Segway RMP's look-ups add (SpeedTables::segway).
+inline constexpr int kSegwayPathRows = 5;
 
 /// The largest violation over a trajectory.
 struct LimitViolation {
@@ -48,7 +53,10 @@ bool vanishesAtRest(std::string_view limit);
 /// The limits of one vehicle as path constraints.
 class PathConstraints {
  public:
-  PathConstraints(const models::VehicleLimits& limits, const SpeedTables& tables);
+  /// `segway_bound_scale` in (0, 1]: the Segway's slope speed and acceleration bounds times
+  /// this (a margin for what happens between the points where the rows are held).
+  PathConstraints(const models::VehicleLimits& limits, const SpeedTables& tables,
+                  double segway_bound_scale = 1.0);
 
   /// Rows per point.
   int count() const { return count_; }
@@ -60,13 +68,20 @@ class PathConstraints {
   void evaluate(const PathPoint& point, double* values,
                 Eigen::Matrix<double, Eigen::Dynamic, kPathVariables>* jacobian) const;
 
-  /// Folds the point's violations into `worst` (each in its limit's own units).
+  /// Folds the point's violations into `worst` (each in its limit's own units). Not the
+  /// Segway's rows: the verdict (models::TrajectoryRequirements::segway) judges those by the
+  /// look-ups' grids, between samples.
   void accumulateViolation(const PathPoint& point, LimitViolation& worst) const;
 
  private:
+  void evaluateSegway(const PathPoint& point, double* values,
+                      Eigen::Matrix<double, Eigen::Dynamic, kPathVariables>* jacobian) const;
+
   models::VehicleLimits limits_;
   SpeedTables tables_;
   int count_;
+  double segway_bound_scale_;
+  int pitch_table_row_ = -1, roll_curvature_row_ = -1, segway_row_ = -1;  // -1: no such rows
 };
 
 }  // namespace terratraj::ocp
