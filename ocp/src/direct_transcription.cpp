@@ -39,7 +39,11 @@ class IpoptTranscription final : public Ipopt::TNLP {
         x0_(x0),
         options_(options),
         started_(started),
-        history_(history) {}
+        history_(history),
+        // A later solve of the same call (a mesh round, the L-BFGS retry) starts its first
+        // step from now, not from the call's start: else it would count the time already spent
+        // as one iteration and stop at once past half the limit.
+        previous_elapsed_(secondsSince(started)) {}
 
   bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac, Ipopt::Index& nnz_h,
                     IndexStyleEnum& style) override {
@@ -358,11 +362,16 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
 }
 
 // Whether a solve with the default exact Hessian on the Segway ended locally infeasible or at
-// its iteration limit (not its time limit): solveDirectTranscription then tries L-BFGS once.
+// its iteration limit (not its time limit) with at least half of the time limit left
+// (`elapsed_s` of it spent): solveDirectTranscription then tries L-BFGS once. A retry that would
+// take the rest of a nearly spent limit leaves the caller's other seeds no time (measured on the
+// robustness set, docs/benchmarks.md).
 bool retriesWithLimitedMemory(const TranscriptionNlp& nlp,
-                              const DirectTranscriptionOptions& options, const SingleSolve& solve) {
+                              const DirectTranscriptionOptions& options, const SingleSolve& solve,
+                              double elapsed_s) {
   return !options.hessian && nlp.model().options().segway &&
          defaultHessian(nlp) == TranscriptionHessian::kExact && !solve.time_limit_reached &&
+         (!options.time_limit_s || elapsed_s < 0.5 * *options.time_limit_s) &&
          (solve.status == SolveStatus::kInfeasible || solve.status == SolveStatus::kMaxIterations);
 }
 
@@ -543,7 +552,7 @@ TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingMod
       TranscriptionNlp nlp(model, layout);
       const Eigen::VectorXd x0 = initialVariables(nlp, problem, current);
       SingleSolve solve = solveOnce(nlp, problem, x0, options, started, out.result.history);
-      if (retriesWithLimitedMemory(nlp, options, solve)) {
+      if (retriesWithLimitedMemory(nlp, options, solve, secondsSince(started))) {
         // The Segway's look-ups are only C1: where the exact Hessian's steps end locally
         // infeasible or stall, L-BFGS from the same start often gets through.
         total_iterations += solve.iterations;
