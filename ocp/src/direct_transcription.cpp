@@ -40,9 +40,7 @@ class IpoptTranscription final : public Ipopt::TNLP {
         options_(options),
         started_(started),
         history_(history),
-        // A later solve of the same call (a mesh round, the L-BFGS retry) starts its first
-        // step from now, not from the call's start: else it would count the time already spent
-        // as one iteration and stop at once past half the limit.
+        // A later solve of a call (mesh round, retry) times its first step from now.
         previous_elapsed_(secondsSince(started)) {}
 
   bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac, Ipopt::Index& nnz_h,
@@ -362,10 +360,8 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
 }
 
 // Whether a solve with the default exact Hessian on the Segway ended locally infeasible or at
-// its iteration limit (not its time limit) with at least half of the time limit left
-// (`elapsed_s` of it spent): solveDirectTranscription then tries L-BFGS once. A retry that would
-// take the rest of a nearly spent limit leaves the caller's other seeds no time (measured on the
-// robustness set, docs/benchmarks.md).
+// its iteration limit with half its time limit left (`elapsed_s` spent): then L-BFGS is tried
+// once. Later, a retry would take the time of the caller's other seeds (docs/benchmarks.md).
 bool retriesWithLimitedMemory(const TranscriptionNlp& nlp,
                               const DirectTranscriptionOptions& options, const SingleSolve& solve,
                               double elapsed_s) {
