@@ -67,7 +67,8 @@ models::AttitudeResult restingAttitude(const models::TerrainFollowingModel& mode
       model.compute({state.x, state.y, state.heading}, workspace, result);
   if (status != models::AttitudeStatus::kOk) {
     std::ostringstream message;
-    message << problem.source_file.string() << ": " << which << ": the " << model.name()
+    message << problem.source_file.string() << ": " << which << ": the "
+            << models::vehicleModelName(problem.vehicle.model)
             << " vehicle cannot rest on the terrain at (" << state.x << ", " << state.y
             << ") m, heading " << state.heading << " rad ("
             << (status == models::AttitudeStatus::kNoTerrain

@@ -132,7 +132,7 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
   const search::ReferenceFrames frames = problemReferenceFrames(problem, query);
   const refine::CandidateRefiner refiner(query, bvp, frames, refine);
   context.log->info("refining {} ({} samples) on the {} model", options.candidate.string(),
-                    candidate.samples.size(), scene.vehicle().name());
+                    candidate.samples.size(), models::vehicleModelName(problem.vehicle.model));
   const refine::RefinementResult result = refiner.refine(candidate);
   const models::Trajectory* returned = returnedTrajectory(result);
   std::optional<std::filesystem::path> written;

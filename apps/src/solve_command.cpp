@@ -275,7 +275,7 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
     context.log->info(
         "solving with {} ({} seeds) on the {} model", solverMethodName(problem.solver.method),
         problem.solver.initial_guess == InitialGuessKind::kFlat ? "004's flat" : "global",
-        vehicle.name());
+        models::vehicleModelName(problem.vehicle.model));
     solution = refine::solveSeeded(vehicle, bvp, &map, seeded);
   }
   if (options.out && solution.verified.ok) {
