@@ -40,6 +40,7 @@ class IpoptTranscription final : public Ipopt::TNLP {
         options_(options),
         started_(started),
         history_(history),
+        stall_(options.stall),
         // A later solve of a call (mesh round, retry) times its first step from now.
         previous_elapsed_(secondsSince(started)) {}
 
@@ -189,8 +190,8 @@ class IpoptTranscription final : public Ipopt::TNLP {
     });
   }
 
-  bool intermediate_callback(Ipopt::AlgorithmMode, Ipopt::Index iter, Ipopt::Number obj_value,
-                             Ipopt::Number inf_pr, Ipopt::Number inf_du, Ipopt::Number,
+  bool intermediate_callback(Ipopt::AlgorithmMode mode, Ipopt::Index iter, Ipopt::Number obj_value,
+                             Ipopt::Number inf_pr, Ipopt::Number inf_du, Ipopt::Number mu,
                              Ipopt::Number, Ipopt::Number, Ipopt::Number, Ipopt::Number alpha_pr,
                              Ipopt::Index, const Ipopt::IpoptData*,
                              Ipopt::IpoptCalculatedQuantities*) override {
@@ -203,6 +204,10 @@ class IpoptTranscription final : public Ipopt::TNLP {
       record.step = alpha_pr;
       history_.push_back(record);
       last_iteration_ = iter;
+      if (mode == Ipopt::RegularMode && stall_.accept(obj_value, inf_pr, inf_du, mu)) {
+        stalled_ = true;  // cycling at a kink of the terrain, at a feasible iterate
+        return false;
+      }
       if (options_.time_limit_s) {
         // Stop when the next iteration (as long as the last one) would end past the limit.
         const double elapsed = secondsSince(started_);
@@ -231,6 +236,7 @@ class IpoptTranscription final : public Ipopt::TNLP {
 
   bool finalized() const { return finalized_; }
   bool timedOut() const { return timed_out_; }
+  bool stalled() const { return stalled_; }
   int iterations() const { return last_iteration_; }
   const Eigen::VectorXd& finalX() const { return final_x_; }
   const Eigen::VectorXd& finalLambda() const { return final_lambda_; }
@@ -242,34 +248,12 @@ class IpoptTranscription final : public Ipopt::TNLP {
   const DirectTranscriptionOptions& options_;
   Clock::time_point started_;
   std::vector<IterationRecord>& history_;
+  IterationStall stall_;
   Eigen::VectorXd final_x_, final_lambda_;
-  bool finalized_ = false, timed_out_ = false;
+  bool finalized_ = false, timed_out_ = false, stalled_ = false;
   int last_iteration_ = 0;
   double previous_elapsed_ = 0.0;  // [s] at the previous iteration
 };
-
-// Initial variables: the guess interpolated at the point times (scaled to the guess's own
-// final time), the boundary states imposed, the goal heading unwrapped next to the guess's.
-Eigen::VectorXd initialVariables(const TranscriptionNlp& nlp, const BoundaryValueProblem& problem,
-                                 const TranscriptionGuess& guess) {
-  Eigen::VectorXd x(nlp.variableCount());
-  const double tf = guess.finalTime();
-  for (int p = 0; p < nlp.points(); ++p) {
-    x.segment<kPointSize>(kPointSize * p) =
-        guess.at(tf * nlp.pointTimes()[static_cast<std::size_t>(p)]);
-  }
-  x(nlp.finalTimeIndex()) = tf;
-  const VehicleState& s = problem.start;
-  const VehicleState& g = problem.goal;
-  const double first_heading = x(2);
-  x.head<kStateSize>() << s.x, s.y, first_heading + wrapAngle(s.heading - first_heading), s.v,
-      s.omega;
-  const int last = kPointSize * (nlp.points() - 1);
-  const double last_heading = x(last + 2);
-  x.segment<kStateSize>(last) << g.x, g.y, last_heading + wrapAngle(g.heading - last_heading), g.v,
-      g.omega;
-  return x;
-}
 
 // Ipopt's barrier strategy (TranscriptionBarrier).
 bool setBarrier(Ipopt::OptionsList& ipopt, const DirectTranscriptionOptions& options) {
@@ -349,6 +333,10 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
   }
   detail::IpoptOutcome outcome = detail::ipoptOutcome(status, adapter->timedOut(),
                                                       options.max_iterations, options.time_limit_s);
+  if (status == Ipopt::User_Requested_Stop && adapter->stalled()) {
+    outcome = {SolveStatus::kConverged, ""};
+    out.ipopt_status += " (stalled at a feasible, nearly stationary point: accepted)";
+  }
   out.status = outcome.status;
   out.reason = std::move(outcome.reason);
   out.time_limit_reached = out.status != SolveStatus::kConverged &&

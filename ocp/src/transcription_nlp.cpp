@@ -462,4 +462,27 @@ bool TranscriptionNlp::hessian(const double* x_data, double sigma, const double*
   return true;
 }
 
+// The guess interpolated at the point times (scaled to the guess's own
+// final time), the boundary states imposed, the goal heading unwrapped next to the guess's.
+Eigen::VectorXd initialVariables(const TranscriptionNlp& nlp, const BoundaryValueProblem& problem,
+                                 const TranscriptionGuess& guess) {
+  Eigen::VectorXd x(nlp.variableCount());
+  const double tf = guess.finalTime();
+  for (int p = 0; p < nlp.points(); ++p) {
+    x.segment<kPointSize>(kPointSize * p) =
+        guess.at(tf * nlp.pointTimes()[static_cast<std::size_t>(p)]);
+  }
+  x(nlp.finalTimeIndex()) = tf;
+  const VehicleState& s = problem.start;
+  const VehicleState& g = problem.goal;
+  const double first_heading = x(2);
+  x.head<kStateSize>() << s.x, s.y, first_heading + wrapAngle(s.heading - first_heading), s.v,
+      s.omega;
+  const int last = kPointSize * (nlp.points() - 1);
+  const double last_heading = x(last + 2);
+  x.segment<kStateSize>(last) << g.x, g.y, last_heading + wrapAngle(g.heading - last_heading), g.v,
+      g.omega;
+  return x;
+}
+
 }  // namespace terratraj::ocp

@@ -55,6 +55,12 @@ std::pair<double, double> relativeExcess(const models::CheckReport& check) {
   return {speed, other};
 }
 
+// Whether the re-simulated end misses the goal (beside any other failure).
+bool missesGoal(const models::CheckReport& check) {
+  return check.find("goal_position") != nullptr || check.find("goal_heading") != nullptr ||
+         check.find("goal_speed") != nullptr;
+}
+
 bool clipsMap(const models::CheckReport& check) {
   return check.find("lethal") != nullptr || check.find("no_data") != nullptr;
 }
@@ -69,6 +75,7 @@ std::optional<std::string> validateTranscriptionSolveOptions(const Transcription
     return "limit_margin must be in [0, 0.5)";
   }
   if (o.max_rounds < 0) return "max_rounds must be >= 0";
+  if (!(o.mesh_excess > 0.0 && o.mesh_excess <= 0.5)) return "mesh_excess must be in (0, 0.5]";
   if (o.max_intervals < o.transcription.intervals) {
     return "max_intervals (" + std::to_string(o.max_intervals) + ") must be >= intervals (" +
            std::to_string(o.transcription.intervals) + ")";
@@ -216,7 +223,14 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
       continue;
     }
     const bool can_double = 2 * transcription.intervals <= options.max_intervals;
-    if (out.verdict.failure == models::VerdictFailure::kMissesGoal) {
+    const auto [speed_excess, limit_excess] = relativeExcess(out.verdict.check);
+    // A missed goal (with limits broken or not) or a limit broken far between the points is the
+    // discretisation's error: more intervals, before margins that would cost that much time.
+    const bool coarse =
+        missesGoal(out.verdict.check) || std::max(speed_excess, limit_excess) > options.mesh_excess;
+    if (coarse && can_double && !clipsMap(out.verdict.check)) {
+      transcription.intervals *= 2;
+    } else if (out.verdict.failure == models::VerdictFailure::kMissesGoal) {
       // The discretisation error: more intervals.
       if (!can_double) {
         out.reason += ": the mesh is at its cap of " + std::to_string(options.max_intervals) +
@@ -234,25 +248,25 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
     } else {
       // A limit broken between the points (the states are quadratic there): margins wider by
       // the measured excess, with room to spare (margins cost optimality, little).
-      auto [speed_excess, limit_excess] = relativeExcess(out.verdict.check);
+      double speed_excess_used = speed_excess;
       const LimitViolation& segway = out.verified.violation;
       if (segway.limit.rfind("segway", 0) == 0 && segway.amount > 0.0) {
         // The Segway's look-ups (checked on the re-simulation only), in the speed group.
         const double bound =
             segway.limit == "segway_slope_v_max" ? problem.limits.v_max : problem.limits.a_max;
-        speed_excess = std::max(speed_excess, segway.amount / std::max(bound, 1e-9));
+        speed_excess_used = std::max(speed_excess, segway.amount / std::max(bound, 1e-9));
       }
       const double speed_floor = std::max(speed_margin, 1e-4);
       const double limit_floor = std::max(limit_margin, 1e-3);
-      if (speed_excess > 0.0) {
+      if (speed_excess_used > 0.0) {
         speed_margin =
-            std::min(0.25, std::max(2.0 * speed_floor, speed_floor + 2.0 * speed_excess));
+            std::min(0.25, std::max(2.0 * speed_floor, speed_floor + 2.0 * speed_excess_used));
       }
       if (limit_excess > 0.0) {
         limit_margin =
             std::min(0.25, std::max(2.0 * limit_floor, limit_floor + 2.0 * limit_excess));
       }
-      if (speed_excess == 0.0 && limit_excess == 0.0) {
+      if (speed_excess_used == 0.0 && limit_excess == 0.0) {
         speed_margin = std::min(0.25, 4.0 * speed_floor);
         limit_margin = std::min(0.25, 2.0 * limit_floor);
       }

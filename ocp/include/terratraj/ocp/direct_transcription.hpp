@@ -12,6 +12,7 @@
 
 #include "terratraj/models/terrain_following_model.hpp"
 #include "terratraj/ocp/boundary_value_problem.hpp"
+#include "terratraj/ocp/iteration_stall.hpp"
 #include "terratraj/ocp/solve_result.hpp"
 #include "terratraj/ocp/transcription_guess.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
@@ -77,6 +78,9 @@ struct DirectTranscriptionOptions {
   std::optional<double> time_limit_s;  ///< wall clock for the whole solve [s]
   double tolerance = 1e-6;             ///< Ipopt's tol (scaled KKT error)
   double constraint_tolerance = 1e-8;  ///< Ipopt's constr_viol_tol (unscaled) [state units]
+  /// A solve cycling at a feasible, nearly stationary point (a kink of the terrain) stops
+  /// there as converged (Ipopt status "User_Requested_Stop (stalled ...)"); window 0: never.
+  StallAcceptance stall;
   TranscriptionBarrier barrier = TranscriptionBarrier::kAdaptive;
   double warm_mu_init = 1e-6;  ///< kWarm's first barrier parameter (scaled), > 0
   MeshRefinementOptions refinement;

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "terratraj/ocp/transcription_guess.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
 
 namespace terratraj::ocp {
@@ -199,5 +200,11 @@ class TranscriptionNlp {
   struct Shooting;
   std::unique_ptr<Shooting> shooting_;
 };
+
+/// The NLP's variables from a guess: the guess interpolated at the point times (scaled to the
+/// guess's own final time), the boundary states of `problem` imposed, the goal heading unwrapped
+/// next to the guess's. `guess` must hold at least two samples.
+Eigen::VectorXd initialVariables(const TranscriptionNlp& nlp, const BoundaryValueProblem& problem,
+                                 const TranscriptionGuess& guess);
 
 }  // namespace terratraj::ocp

@@ -40,6 +40,10 @@ struct TranscriptionSolveOptions {
   /// ... and kappa_max, sigma_max, pitch_max, roll_max by this one, in [0, 0.5).
   double limit_margin = 0.002;
   int max_rounds = 4;  ///< re-solves after the first, >= 0
+  /// A round whose re-simulation misses the goal, or breaks a limit between the points by more
+  /// than this fraction of it, is solved again at twice the intervals (while max_intervals
+  /// allows) rather than with wider margins, in (0, 0.5].
+  double mesh_excess = 0.05;
   /// The barrier strategy of the re-solves, which start from the previous round's solution
   /// (the first round uses transcription.barrier). kWarm saves iterations when the rounds only
   /// refine the mesh of a near-optimal solution (refinement of a planner candidate); from Dubins
