@@ -79,6 +79,7 @@ TrajectoryVerdict judgeTrajectory(const Trajectory& trajectory,
                     : limits ? VerdictFailure::kBreaksLimits
                     : goal   ? VerdictFailure::kMissesGoal
                              : VerdictFailure::kNone;
+  verdict.misses_goal = goal;
   if (verdict.passes()) return verdict;
   std::ostringstream reason;
   reason << "the written trajectory fails the independent check: ";

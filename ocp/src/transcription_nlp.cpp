@@ -462,8 +462,6 @@ bool TranscriptionNlp::hessian(const double* x_data, double sigma, const double*
   return true;
 }
 
-// The guess interpolated at the point times (scaled to the guess's own
-// final time), the boundary states imposed, the goal heading unwrapped next to the guess's.
 Eigen::VectorXd initialVariables(const TranscriptionNlp& nlp, const BoundaryValueProblem& problem,
                                  const TranscriptionGuess& guess) {
   Eigen::VectorXd x(nlp.variableCount());

@@ -55,12 +55,6 @@ std::pair<double, double> relativeExcess(const models::CheckReport& check) {
   return {speed, other};
 }
 
-// Whether the re-simulated end misses the goal (beside any other failure).
-bool missesGoal(const models::CheckReport& check) {
-  return check.find("goal_position") != nullptr || check.find("goal_heading") != nullptr ||
-         check.find("goal_speed") != nullptr;
-}
-
 bool clipsMap(const models::CheckReport& check) {
   return check.find("lethal") != nullptr || check.find("no_data") != nullptr;
 }
@@ -227,7 +221,7 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
     // A missed goal (with limits broken or not) or a limit broken far between the points is the
     // discretisation's error: more intervals, before margins that would cost that much time.
     const bool coarse =
-        missesGoal(out.verdict.check) || std::max(speed_excess, limit_excess) > options.mesh_excess;
+        out.verdict.misses_goal || std::max(speed_excess, limit_excess) > options.mesh_excess;
     if (coarse && can_double && !clipsMap(out.verdict.check)) {
       transcription.intervals *= 2;
     } else if (out.verdict.failure == models::VerdictFailure::kMissesGoal) {
@@ -248,7 +242,7 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
     } else {
       // A limit broken between the points (the states are quadratic there): margins wider by
       // the measured excess, with room to spare (margins cost optimality, little).
-      double speed_excess_used = speed_excess;
+      double speed_excess_used = speed_excess;  // with the Segway's look-ups
       const LimitViolation& segway = out.verified.violation;
       if (segway.limit.rfind("segway", 0) == 0 && segway.amount > 0.0) {
         // The Segway's look-ups (checked on the re-simulation only), in the speed group.

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "search_fixtures.hpp"
+#include "terratraj/models/trajectory_verdict.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 
 namespace terratraj::search {
@@ -53,6 +54,15 @@ TEST(TrajectoryChecker, CatchesEachInjectedViolation) {
               hasViolation(short_report, "goal_heading") ||
               hasViolation(short_report, "goal_speed"))
       << short_report.summary();
+  // The verdict names a missed goal beside a broken limit, which it reports first.
+  models::Trajectory short_and_fast = short_of_goal;
+  short_and_fast.samples[mid].v = 1.5 * world->problem.limits.v_max;
+  const models::TrajectoryVerdict verdict =
+      models::judgeTrajectory(short_and_fast, requirementsOf(world->problem));
+  EXPECT_EQ(verdict.failure, models::VerdictFailure::kBreaksLimits) << verdict.reason;
+  EXPECT_TRUE(verdict.misses_goal) << verdict.reason;
+  EXPECT_FALSE(
+      models::judgeTrajectory(result.trajectory, requirementsOf(world->problem)).misses_goal);
   // A lethal cell under the path.
   terrain::GridLayer& lethal = world->map.addLayer(terrain::layer_names::kLethal, 0.0f);
   const models::TrajectorySample& s = result.trajectory.samples[mid];

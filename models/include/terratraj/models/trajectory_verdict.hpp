@@ -29,6 +29,9 @@ const char* verdictFailureName(VerdictFailure failure);
 /// The outcome of judgeTrajectory().
 struct TrajectoryVerdict {
   VerdictFailure failure = VerdictFailure::kUnusable;
+  /// A goal rule is broken (goal_position, goal_heading, goal_speed), beside whatever
+  /// `failure` names first.
+  bool misses_goal = false;
   CheckReport check;   ///< every rule broken, worst of each
   std::string reason;  ///< empty when it passes; else one line naming the rules, rows, amounts
   bool passes() const { return failure == VerdictFailure::kNone; }
