@@ -533,6 +533,8 @@ TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingMod
     TranscriptionGuess current = guess;
     int total_iterations = 0;
     for (int round = 0;; ++round) {
+      layout.interval_bounds_final_time =
+          options.interval_bounds ? intervalBoundsFinalTime(problem, current.finalTime()) : 0.0;
       TranscriptionNlp nlp(model, layout);
       const Eigen::VectorXd x0 = initialVariables(nlp, problem, current);
       SingleSolve solve = solveOnce(nlp, problem, x0, options, started, out.result.history);

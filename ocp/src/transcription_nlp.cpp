@@ -110,6 +110,10 @@ ConstraintRow TranscriptionNlp::row(int row) const {
     const int interval = layout_.scheme == TranscriptionScheme::kHermiteSimpson ? block / 2 : block;
     return {true, interval, "defect"};
   }
+  if (row >= defect_rows_ + path_rows_ + rest_rows_) {
+    const int bound = row - defect_rows_ - path_rows_ - rest_rows_;
+    return {false, bounds_.point(bound), bounds_.name(bound)};
+  }
   if (row >= defect_rows_ + path_rows_) {
     return {false, rest_[static_cast<std::size_t>(row - defect_rows_ - path_rows_)].point,
             "kappa_max_at_rest"};
@@ -220,6 +224,10 @@ void TranscriptionNlp::buildStructure() {
     jac_cols_.push_back(kPointSize * r.point + kStateSize);  // v'
     ++row;
   }
+  bounds_ =
+      IntervalBoundRows(layout_.scheme, mesh, problem.limits, layout_.interval_bounds_final_time);
+  bound_jac_start_ = static_cast<int>(jac_rows_.size());
+  bounds_.appendStructure(row, jac_rows_, jac_cols_);
   hess_rows_.clear();
   hess_cols_.clear();
   for (int p = 0; p < points(); ++p) {
@@ -357,6 +365,8 @@ void TranscriptionNlp::evaluatePathAndCost(const Eigen::Map<const Eigen::VectorX
     jac_values_(entry++) = r.omega_dot;
     jac_values_(entry++) = r.v_dot;
   }
+  bounds_.evaluate(x, constraints_.data() + defect_rows_ + path_rows_ + rest_rows_);
+  bounds_.jacobian(jac_values_.data() + bound_jac_start_);
 }
 
 bool TranscriptionNlp::evaluate(const double* x_data) {

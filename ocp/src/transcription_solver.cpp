@@ -39,13 +39,15 @@ BoundaryValueProblem tightened(const BoundaryValueProblem& problem, double speed
 }
 
 // The largest relative excess of the broken limits of each margin group: (v_max, a_max,
-// omega_max) and (kappa_max, sigma_max, pitch_max, roll_max, the tables).
+// omega_max, the Segway's look-ups) and (kappa_max, sigma_max, pitch_max, roll_max, the
+// tables).
 std::pair<double, double> relativeExcess(const models::CheckReport& check) {
   double speed = 0.0, other = 0.0;
   for (const models::CheckViolation& v : check.violations) {
     if (!(v.bound > 0.0) || !std::isfinite(v.amount)) continue;
     const double excess = v.amount / v.bound;
-    if (v.limit == "v_max" || v.limit == "a_max" || v.limit == "omega_max") {
+    if (v.limit == "v_max" || v.limit == "a_max" || v.limit == "omega_max" ||
+        v.limit.rfind("segway_", 0) == 0) {
       speed = std::max(speed, excess);
     } else if (v.limit == "kappa_max" || v.limit == "sigma_max" || v.limit == "pitch_max" ||
                v.limit == "roll_max" || v.limit.rfind("table_", 0) == 0) {

@@ -62,6 +62,11 @@ struct DirectTranscriptionOptions {
   bool linear_controls = false;
   /// The curvature rows at a start or goal at rest (TranscriptionLayout::rest_curvature).
   bool rest_curvature = false;
+  /// Collocation: v_max, v >= 0, omega_max and kappa_max on the whole of every interval, not
+  /// only at its points (TranscriptionLayout::interval_bounds_final_time: for final times up
+  /// to the guess's, at most twice the straight drive's), so the re-simulation finds no
+  /// overshoot of them there.
+  bool interval_bounds = true;
   int intervals = 40;  ///< N, >= 1
   /// Unset: exact for collocation (with the Segway too: the model takes the C1 versions of its
   /// look-ups), limited-memory for shooting. With the Segway, a solve that ends locally

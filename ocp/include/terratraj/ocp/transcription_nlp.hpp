@@ -13,7 +13,9 @@
 //     z_{k+1} - z_k - t_f d_k/6 (f_k + 4 f_m + f_{k+1}); multiple shooting
 //     z_{k+1} - Phi_k(z_k, u_k, [u_{k+1}], t_f) with Phi_k from CVODES and its Jacobian blocks
 //     from CVODES forward sensitivities (d_k = tau_{k+1} - tau_k);
-//   path constraints g(w_p) <= 0 at every point (TranscriptionModel).
+//   path constraints g(w_p) <= 0 at every point (TranscriptionModel);
+//   the curvature rows at rest (TranscriptionLayout::rest_curvature) and the limits between the
+//   points (TranscriptionLayout::interval_bounds), when asked for.
 // Objective J = t_f (1 + sum_p omega_p l(w_p)), omega_p the quadrature weights (trapezoid, or
 // Simpson for Hermite-Simpson; trapezoid on the nodes for shooting).
 // The exact Hessian of the Lagrangian (collocation only) is block-diagonal per point plus the
@@ -25,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "terratraj/ocp/interval_bound_rows.hpp"
 #include "terratraj/ocp/transcription_guess.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
 
@@ -64,6 +67,10 @@ struct TranscriptionLayout {
   /// "kappa_max_at_rest", after the path rows. solveTranscription() adds them in a round when a
   /// re-simulation breaks a curvature rule near rest.
   bool rest_curvature = false;
+  /// Collocation only: v_max, v >= 0, omega_max and kappa_max held on the whole of every
+  /// interval for final times up to this [s] (IntervalBoundRows: the hull of the Bezier control
+  /// points of v(t) and omega(t)), after the rest rows, named "<limit>_between_points"; 0: none.
+  double interval_bounds_final_time = 0.0;
 };
 
 /// A uniform mesh of `intervals` (>= 1) intervals.
@@ -92,7 +99,7 @@ class TranscriptionNlp {
   int intervals() const { return static_cast<int>(layout_.mesh.size()) - 1; }
   int points() const { return static_cast<int>(tau_.size()); }
   int variableCount() const { return kPointSize * points() + 1; }
-  int constraintCount() const { return defect_rows_ + path_rows_ + rest_rows_; }
+  int constraintCount() const { return defect_rows_ + path_rows_ + rest_rows_ + bounds_.count(); }
   /// Equality rows (dynamics defects, then the control-linearity rows): the first
   /// defectRowCount() rows of g.
   int defectRowCount() const { return defect_rows_; }
@@ -186,6 +193,8 @@ class TranscriptionNlp {
   };
   std::vector<RestRow> rest_;
   int rest_rows_ = 0, rest_jac_start_ = 0;
+  IntervalBoundRows bounds_;  // layout_.interval_bounds
+  int bound_jac_start_ = 0;
   int control_row_start_ = 0, control_jac_start_ = 0;
   std::vector<int> jac_rows_, jac_cols_, hess_rows_, hess_cols_;
   std::vector<PointEvaluation> evals_;
