@@ -228,6 +228,11 @@ void TranscriptionNlp::buildStructure() {
       IntervalBoundRows(layout_.scheme, mesh, problem.limits, layout_.interval_bounds_final_time);
   bound_jac_start_ = static_cast<int>(jac_rows_.size());
   bounds_.appendStructure(row, jac_rows_, jac_cols_);
+  buildHessianStructure();
+}
+
+void TranscriptionNlp::buildHessianStructure() {
+  const int tf = finalTimeIndex();
   hess_rows_.clear();
   hess_cols_.clear();
   for (int p = 0; p < points(); ++p) {

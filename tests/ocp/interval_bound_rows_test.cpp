@@ -9,7 +9,10 @@
 #include <random>
 
 #include "common/finite_difference.hpp"
+#include "terratraj/bench/problem_sets.hpp"
+#include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/ocp/transcription_nlp.hpp"
+#include "terratraj/terrain/terrain_surface.hpp"
 
 namespace terratraj::ocp {
 namespace {
@@ -159,6 +162,35 @@ TEST(IntervalBoundRows, NoneForShootingAndNamedAfterTheirLimit) {
   EXPECT_EQ(hs.point(1), 2);  // P2 of interval 0 is taken from its end node
   EXPECT_STREQ(hs.name(11), "kappa_max_between_points");
   EXPECT_EQ(hs.point(12), 2);  // interval 1 starts at node 1, point 2
+}
+
+// In a transcription: after the other rows, as many as the scheme has (none for shooting).
+TEST(IntervalBoundRows, AreTheLastRowsOfACollocationNlp) {
+  const terrain::ElevationMap map = bench::problem_sets::flatMap();
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::PointAttitudeModel vehicle(surface);
+  BoundaryValueProblem problem;
+  problem.start = {2.0, 2.0, 0.0, 0.0, 0.0};
+  problem.goal = {6.0, 3.0, 0.0, 0.0, 0.0};
+  const TranscriptionModel model(vehicle, problem);
+  for (TranscriptionScheme scheme :
+       {TranscriptionScheme::kHermiteSimpson, TranscriptionScheme::kTrapezoidal,
+        TranscriptionScheme::kMultipleShooting}) {
+    TranscriptionLayout layout;
+    layout.scheme = scheme;
+    layout.mesh = uniformMesh(4);
+    const int without = TranscriptionNlp(model, layout).constraintCount();
+    layout.interval_bounds_final_time = 3.0;
+    const TranscriptionNlp nlp(model, layout);
+    const int expected = scheme == TranscriptionScheme::kHermiteSimpson ? 4 * 2 * 6
+                         : scheme == TranscriptionScheme::kTrapezoidal  ? 4 * 6
+                                                                        : 0;
+    EXPECT_EQ(nlp.constraintCount() - without, expected) << transcriptionSchemeName(scheme);
+    if (expected > 0) {
+      EXPECT_STREQ(nlp.row(nlp.constraintCount() - 1).name, "kappa_max_between_points");
+      EXPECT_STREQ(nlp.row(without).name, "v_max_between_points");
+    }
+  }
 }
 
 // The rows' final time: the guess's, capped at twice the straight drive (10 m at 1 m/s after

@@ -170,6 +170,7 @@ class TranscriptionNlp {
     int jac_start;  // first Jacobian entry: terms x 35 entries, then 5 for t_f
   };
   void buildStructure();
+  void buildHessianStructure();  // block-diagonal per point, plus the t_f row
   bool evaluateCollocation(const Eigen::Map<const Eigen::VectorXd>& x);
   bool evaluateShooting(const Eigen::Map<const Eigen::VectorXd>& x);
   bool evaluatePoints(const Eigen::Map<const Eigen::VectorXd>& x);
