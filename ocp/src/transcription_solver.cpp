@@ -247,7 +247,9 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
       double speed_excess_used = speed_excess;  // with the Segway's look-ups
       const LimitViolation& segway = out.verified.violation;
       if (segway.limit.rfind("segway", 0) == 0 && segway.amount > 0.0) {
-        // The Segway's look-ups (checked on the re-simulation only), in the speed group.
+        // The Segway's look-ups as the re-simulation checks them (the optimiser's C1 versions,
+        // relative to v_max or a_max), beside the check's (their grids, relative to the
+        // looked-up bound: relativeExcess).
         const double bound =
             segway.limit == "segway_slope_v_max" ? problem.limits.v_max : problem.limits.a_max;
         speed_excess_used = std::max(speed_excess, segway.amount / std::max(bound, 1e-9));

@@ -15,7 +15,7 @@
 //     from CVODES forward sensitivities (d_k = tau_{k+1} - tau_k);
 //   path constraints g(w_p) <= 0 at every point (TranscriptionModel);
 //   the curvature rows at rest (TranscriptionLayout::rest_curvature) and the limits between the
-//   points (TranscriptionLayout::interval_bounds), when asked for.
+//   points (TranscriptionLayout::interval_bounds_final_time), when asked for.
 // Objective J = t_f (1 + sum_p omega_p l(w_p)), omega_p the quadrature weights (trapezoid, or
 // Simpson for Hermite-Simpson; trapezoid on the nodes for shooting).
 // The exact Hessian of the Lagrangian (collocation only) is block-diagonal per point plus the
@@ -194,7 +194,7 @@ class TranscriptionNlp {
   };
   std::vector<RestRow> rest_;
   int rest_rows_ = 0, rest_jac_start_ = 0;
-  IntervalBoundRows bounds_;  // layout_.interval_bounds
+  IntervalBoundRows bounds_;  // layout_.interval_bounds_final_time (none when 0)
   int bound_jac_start_ = 0;
   int control_row_start_ = 0, control_jac_start_ = 0;
   std::vector<int> jac_rows_, jac_cols_, hess_rows_, hess_cols_;
