@@ -180,6 +180,20 @@ nlohmann::json seededReportJson(const refine::SeededSolution& solution,
                             {"cells_reached", solution.reachability->cells_reached},
                             {"attitude_samples", solution.reachability->attitude_samples},
                             {"time_ms", solution.reachability->time_ms}};
+    const auto trap = [](const std::optional<models::CurvatureTrap>& t) {
+      if (!t) return nlohmann::json(nullptr);
+      static const char* const kOutcomes[] = {"trapped", "escapes", "reaches_other_end",
+                                              "undecided"};
+      return nlohmann::json{{"outcome", kOutcomes[static_cast<int>(t->outcome)]},
+                            {"level", t->level},
+                            {"boxes_settled", t->boxes_settled},
+                            {"attitude_samples", t->attitude_samples},
+                            {"radius_m", t->radius_m},
+                            {"area_m2", t->area_m2},
+                            {"time_ms", t->time_ms}};
+    };
+    json["reachability"]["curvature"] = {{"goal", trap(solution.reachability->goal_trap)},
+                                         {"start", trap(solution.reachability->start_trap)}};
   }
   if (solution.parametric) {
     const ocp::SolveResult& s = solution.parametric->solver;

@@ -253,7 +253,89 @@ std::string threeDigits(double value) {
   return text.str();
 }
 
+// The curvature checks (curvature_trap.hpp) at the goal, then at the start; true when one proved
+// the goal unreachable (`out` then says why).
+// One end: the levels in turn until one proves a trap; the counts and times summed.
+CurvatureTrap trapAt(const TerrainFollowingModel& vehicle, const terrain::ElevationMap& map,
+                     const VehicleLimits& limits, const PlanarPose& pose, TrapDirection direction,
+                     const PlanarPose& other, const GoalReachabilityOptions& options,
+                     std::chrono::steady_clock::time_point started) {
+  CurvatureTrap total;
+  for (std::size_t level = 0; level < options.curvature.size(); ++level) {
+    CurvatureTrapOptions trap = options.curvature[level];
+    if (options.time_limit_s) {
+      const double spent =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      const double left = std::max(0.0, *options.time_limit_s - spent);
+      trap.time_limit_s = std::min(trap.time_limit_s.value_or(left), left);
+    }
+    const CurvatureTrap t = checkCurvatureTrap(vehicle, map, limits, pose, direction, other, trap);
+    total.outcome = t.outcome;
+    total.level = static_cast<int>(level);
+    total.boxes_settled += t.boxes_settled;
+    total.attitude_samples += t.attitude_samples;
+    total.radius_m = t.radius_m;
+    total.area_m2 = t.area_m2;
+    total.time_ms += t.time_ms;
+    if (t.outcome == TrapOutcome::kTrapped) break;
+  }
+  return total;
+}
+
+bool checkCurvatureAtTheEnds(const TerrainFollowingModel& vehicle, const terrain::ElevationMap& map,
+                             const VehicleLimits& limits, const PlanarPose& start,
+                             const PlanarPose& goal, const GoalReachabilityOptions& options,
+                             std::chrono::steady_clock::time_point started, GoalReachability& out) {
+  out.goal_trap =
+      trapAt(vehicle, map, limits, goal, TrapDirection::kArriving, start, options, started);
+  const CurvatureTrap* proof = nullptr;
+  const char* end = nullptr;
+  const char* other = nullptr;
+  if (out.goal_trap->outcome == TrapOutcome::kTrapped) {
+    proof = &*out.goal_trap;
+    end = "arrive at the goal's pose";
+    other = "from poses";
+  } else {
+    out.start_trap =
+        trapAt(vehicle, map, limits, start, TrapDirection::kLeaving, goal, options, started);
+    if (out.start_trap->outcome == TrapOutcome::kTrapped) {
+      proof = &*out.start_trap;
+      end = "leave the start's pose";
+      other = "for poses";
+    }
+  }
+  if (proof == nullptr) return false;
+  out.reachable = false;
+  std::ostringstream why;
+  why.precision(3);
+  why << "the goal cannot be reached from the start: driving forwards with curvature at most "
+      << limits.kappa_max << " 1/m, the vehicle can " << end;
+  if (proof->boxes_settled == 0) {
+    why << " only over the first "
+        << options.curvature[static_cast<std::size_t>(proof->level)].step_m << " m";
+  } else {
+    why << " only " << other << " within " << proof->radius_m << " m of it (" << proof->area_m2
+        << " m^2 of positions)";
+  }
+  why << ", boxed in by slopes where pitch exceeds " << limits.pitch_max * 180.0 / kPi
+      << " deg or roll " << limits.roll_max * 180.0 / kPi << " deg ("
+      << options.curvature[static_cast<std::size_t>(proof->level)].limit_tolerance * 100.0
+      << " % slack) or by impassable cells; the other end is not among them";
+  out.reason = why.str();
+  out.time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+  return true;
+}
+
 }  // namespace
+
+std::vector<CurvatureTrapOptions> defaultCurvatureLevels() {
+  CurvatureTrapOptions coarse;
+  coarse.box_m = 0.02;
+  coarse.heading_bins = 180;
+  coarse.step_m = 0.15;
+  return {coarse, CurvatureTrapOptions{}};
+}
 
 GoalReachability checkGoalReachability(const TerrainFollowingModel& vehicle,
                                        const terrain::ElevationMap& map,
@@ -277,6 +359,10 @@ GoalReachability checkGoalReachability(const TerrainFollowingModel& vehicle,
   out.attitude_samples = states.samples();
   out.decided = outcome != ReachabilitySearch::Outcome::kOutOfTime;
   out.reachable = outcome != ReachabilitySearch::Outcome::kExhausted;
+  if (outcome == ReachabilitySearch::Outcome::kReached && !options.curvature.empty() &&
+      checkCurvatureAtTheEnds(vehicle, map, limits, start, goal, options, started, out)) {
+    return out;
+  }
   if (out.reachable) {
     out.time_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)

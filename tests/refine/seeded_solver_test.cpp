@@ -170,6 +170,36 @@ TEST_F(SeededSolverTest, BoxedInGoalIsInfeasibleWithItsReason) {
   EXPECT_FALSE(s.reachability.has_value());
 }
 
+// A U-turn out of a dead end narrower than the turning circle (issue 17: "turning radius
+// larger than the map allows"): `infeasible` with the reason before any seed, by the curvature
+// check; a start heading out of it is solved.
+TEST_F(SeededSolverTest, AUTurnInADeadEndNarrowerThanTheTurningCircleIsInfeasibleAtOnce) {
+  terrain::GridLayer& lethal = map_.addLayer(terrain::layer_names::kLethal);
+  // A corridor 1 m wide along x (rows 58-61 free, 57 and 62 walls) closed at x = 12 (column 48);
+  // kappa_max 1: a turning circle 2 m across.
+  for (int col = 0; col <= 48; ++col) {
+    lethal(57, col) = lethal(62, col) = 1.0f;
+    if (col == 48) {
+      for (int row = 57; row <= 62; ++row) lethal(row, col) = 1.0f;
+    }
+  }
+  ocp::BoundaryValueProblem problem;
+  problem.start = {10.5, 15.0, 0.0, 0.0, 0.0};
+  problem.goal = {8.0, 15.0, M_PI, 0.0, 0.0};
+  problem.limits = sets::roverLimits();
+  SeededSolveOptions options;
+  options.time_limit_s = 20.0;
+  const SeededSolution s = solveSeeded(vehicle_, problem, &map_, options);
+  EXPECT_EQ(s.status, ocp::SolveStatus::kInfeasible) << s.reason;
+  EXPECT_NE(s.reason.find("leave the start's pose"), std::string::npos) << s.reason;
+  EXPECT_TRUE(s.attempts.empty());
+  EXPECT_LT(s.total_time_ms, 5000.0);
+  problem.start.heading = M_PI;
+  problem.goal.x = 5.0;
+  const SeededSolution out = solveSeeded(vehicle_, problem, &map_, options);
+  EXPECT_EQ(out.status, ocp::SolveStatus::kConverged) << out.reason;
+}
+
 // An open problem passes the check (reachable, decided) and is solved as before.
 TEST_F(SeededSolverTest, AReachableGoalPassesTheCheckAndIsSolved) {
   ocp::BoundaryValueProblem problem;

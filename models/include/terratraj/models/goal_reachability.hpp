@@ -20,18 +20,27 @@
 // cell open when any of its sectors is, every neighbour enterable) settles a goal boxed in by
 // lethal cells with one state per cell (a whole 559 x 495 map: 0.4 s for the point model, 4.8 s
 // for the rocker-bogie, against 5 s and 42 s by sector); only when it reaches the goal does the
-// search by sector run.
+// search by sector run. When that reaches the goal too, the curvature check
+// (curvature_trap.hpp) asks whether any path with the vehicle's turning radius can arrive at the
+// goal's pose, then leave the start's: a goal on a side slope that the vehicle can only stand
+// on at its own heading, between ridges it cannot cross, is proved unreachable there.
 
 #include <Eigen/Core>
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "terratraj/models/curvature_trap.hpp"
 #include "terratraj/models/terrain_following_model.hpp"
 #include "terratraj/models/vehicle_limits.hpp"
 #include "terratraj/terrain/elevation_map.hpp"
 
 namespace terratraj::models {
+
+/// The curvature check's default sizes: boxes of 2 cm and 2 deg with moves of 0.15 m, then
+/// the defaults of CurvatureTrapOptions (1 cm, 1 deg, 0.1 m).
+std::vector<CurvatureTrapOptions> defaultCurvatureLevels();
 
 /// How finely the flood fill samples a cell.
 struct GoalReachabilityOptions {
@@ -40,6 +49,10 @@ struct GoalReachabilityOptions {
   /// Wall clock the search may take [s]; when over, the check ends undecided (reachable, with
   /// `decided` false). Absent: none (a whole map at worst).
   std::optional<double> time_limit_s;
+  /// The curvature check at both ends (curvature_trap.hpp), tried at these sizes in turn until
+  /// one proves a trap; empty: not made. Boxes of 2 cm first (a dead end narrower than the
+  /// turning circle: a region of 10^5 boxes), then of 1 cm (a pocket between thin ridges).
+  std::vector<CurvatureTrapOptions> curvature = defaultCurvatureLevels();
 };
 
 /// The outcome of checkGoalReachability().
@@ -53,6 +66,9 @@ struct GoalReachability {
   std::size_t cells_reached = 0;     ///< distinct cells the last search reached
   std::size_t attitude_samples = 0;  ///< vehicle attitudes computed
   double time_ms = 0.0;              ///< wall clock of the check [ms]
+  /// The curvature checks made, after the search by sector reached the goal: at the goal
+  /// (paths arriving), then, unless that one proved the goal unreachable, at the start.
+  std::optional<CurvatureTrap> goal_trap, start_trap;
 };
 
 /// Whether `goal` can be reached from `start` [m, map-local, rad] by `vehicle` driving forwards
