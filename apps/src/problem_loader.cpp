@@ -259,12 +259,27 @@ void readChoiceInto(const Context& ctx, const MapReader& map, const char* key,
 
 // `solver`.
 SolverSpec parseSolver(const Context& ctx, const Field& field) {
-  const MapReader map(
-      ctx, field,
-      {"method", "intervals", "max_iterations", "tolerance", "time_limit_s", "yaw_rate_order",
-       "speed_order", "scheme", "shooting_controls", "hessian", "control_effort",
-       "mesh_refinement_rounds", "mesh_refinement_tolerance", "min_clearance_m", "max_intervals",
-       "initial_guess", "transcription_max_iterations", "ipopt_max_iterations"});
+  const MapReader map(ctx, field,
+                      {"method",
+                       "intervals",
+                       "max_iterations",
+                       "tolerance",
+                       "time_limit_s",
+                       "yaw_rate_order",
+                       "speed_order",
+                       "scheme",
+                       "shooting_controls",
+                       "hessian",
+                       "control_effort",
+                       "mesh_refinement_rounds",
+                       "mesh_refinement_tolerance",
+                       "min_clearance_m",
+                       "max_intervals",
+                       "initial_guess",
+                       "transcription_max_iterations",
+                       "ipopt_max_iterations",
+                       "seed_time_s",
+                       "first_seed_time_s"});
   SolverSpec solver;
   if (const std::optional<Field> method = map.find("method")) {
     solver.method = readEnum<SolverMethod>(ctx, *method, parseSolverMethod, solverMethodNames());
@@ -299,6 +314,8 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
     parseTolerance(ctx, *tolerance, solver);
   }
   solver.time_limit_s = map.optionalNumber("time_limit_s", Range::nonNegative());
+  solver.seed_time_s = map.optionalNumber("seed_time_s", Range::positive());
+  solver.first_seed_time_s = map.optionalNumber("first_seed_time_s", Range::positive());
   using ocp::TranscriptionScheme;
   readChoiceInto<TranscriptionScheme>(ctx, map, "scheme",
                                       {{"hermite_simpson", TranscriptionScheme::kHermiteSimpson},

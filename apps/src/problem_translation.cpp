@@ -165,6 +165,10 @@ refine::SeededSolveOptions seededSolveOptions(const ProblemSpec& problem,
   // The PRM stops at its first solution; absent, refine::kDefaultSearchTimeS.
   seeded.search_time_s = problem.planner.time_limit_s;
   seeded.time_limit_s = problem.solver.time_limit_s;
+  if (problem.solver.seed_time_s) seeded.seed_time_s = *problem.solver.seed_time_s;
+  if (problem.solver.first_seed_time_s) {
+    seeded.first_seed_time_s = *problem.solver.first_seed_time_s;
+  }
   seeded.stop = stop;
   return seeded;
 }

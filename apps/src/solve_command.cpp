@@ -1,5 +1,6 @@
 #include "terratraj/apps/solve_command.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <ostream>
@@ -166,6 +167,8 @@ nlohmann::json seededReportJson(const refine::SeededSolution& solution,
       {"time_limit_s",
        seeded.time_limit_s ? nlohmann::json(*seeded.time_limit_s) : nlohmann::json(nullptr)},
       {"solve_time_ms", solution.total_time_ms},
+      {"seed_time_s", seeded.seed_time_s},
+      {"first_seed_time_s", std::max(seeded.seed_time_s, seeded.first_seed_time_s)},
       {"tolerance",
        {{"position_m", seeded.parametric.criteria.position_m},
         {"heading_rad", seeded.parametric.criteria.heading_rad},
@@ -264,8 +267,12 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
   const ocp::BoundaryValueProblem bvp = boundaryValueProblem(problem, scene);
   std::optional<terrain::ClearanceMap> clearance;
   if (problem.solver.min_clearance_m) clearance.emplace(map);
-  const refine::SeededSolveOptions seeded =
+  refine::SeededSolveOptions seeded =
       seededSolveOptions(problem, clearance ? &*clearance : nullptr, context.stop);
+  seeded.on_attempt = [&context](const refine::SeedAttempt& a) {
+    context.log->info("{} from {}: {} ({:.0f} ms; seed budget {:.3g} s, round {})", a.method,
+                      a.seed, ocp::solveStatusName(a.status), a.time_ms, a.budget_s, a.round);
+  };
   refine::SeededSolution solution;
   if (options.guess) {
     // A user's guess: the transcription from it alone.

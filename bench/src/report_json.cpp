@@ -12,7 +12,9 @@ nlohmann::json attemptsJson(const std::vector<refine::SeedAttempt>& attempts) {
                     {"status", ocp::solveStatusName(a.status)},
                     {"reason", a.reason},
                     {"cost", jsonNumber(a.cost)},
-                    {"time_ms", a.time_ms}});
+                    {"time_ms", a.time_ms},
+                    {"budget_s", jsonNumber(a.budget_s)},
+                    {"round", a.round}});
   }
   return rows;
 }

@@ -58,6 +58,8 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
            << "): the goal may be unreachable";
     out.status = ocp::SolveStatus::kInfeasible;
     out.reason = reason.str();
+    out.search_cut_short = budget < options.search_time_s.value_or(kDefaultSearchTimeS) &&
+                           !(options.stop != nullptr && options.stop->load());
     return out;
   }
   std::ostringstream seed;

@@ -337,6 +337,171 @@ SeededSolution attemptFlat(const models::TerrainFollowingModel& vehicle,
   return attempt(vehicle, problem, map, options, &seed, deadline.left());
 }
 
+// The attempts of one solveSeeded() and the best of them so far.
+class AttemptLog {
+ public:
+  AttemptLog(CoreMethod method, std::function<void(const SeedAttempt&)> on_attempt)
+      : on_attempt_(std::move(on_attempt)) {
+    best_.method = coreMethodName(method);
+    best_.reason = "no attempt was made";
+  }
+
+  // Adds `result`, started at `attempt_started`, and tells `on_attempt`; `candidate` false:
+  // listed among the attempts, never the result (a bridge's first step when a clearance is
+  // asked for).
+  void record(SeededSolution result, Clock::time_point attempt_started, bool candidate = true) {
+    SeedAttempt a;
+    a.seed = result.initial_guess;
+    a.method = result.method;
+    a.status = result.status;
+    a.reason = result.reason;
+    a.cost = result.verified.ok ? result.verified.cost : std::numeric_limits<double>::quiet_NaN();
+    a.time_ms = 1e3 * secondsSince(attempt_started);
+    a.budget_s = budget_s;
+    a.round = round;
+    const int iterations = best_.iterations + result.iterations;
+    const bool first_candidate = !any_candidate_;
+    any_candidate_ = any_candidate_ || candidate;
+    std::vector<SeedAttempt> attempts = std::move(best_.attempts);
+    attempts.push_back(a);
+    if (candidate && (first_candidate || better(result, best_))) best_ = std::move(result);
+    best_.attempts = std::move(attempts);
+    best_.iterations = iterations;
+    if (on_attempt_) on_attempt_(a);
+  }
+
+  bool converged() const { return best_.status == ocp::SolveStatus::kConverged; }
+  bool empty() const { return best_.attempts.empty(); }
+  SeededSolution& best() { return best_; }
+
+  double budget_s = std::numeric_limits<double>::infinity();  ///< of the seed being tried [s]
+  int round = 0;                                              ///< of the seed being tried
+
+ private:
+  std::function<void(const SeedAttempt&)> on_attempt_;
+  SeededSolution best_;
+  bool any_candidate_ = false;
+};
+
+// auto, when collocation fails from a word: the parametric ipopt (few unknowns, free speed, the
+// limits held) from the same word, and collocation again from its trajectory, which follows the
+// terrain within the limits; within `within`. ipopt's verified result is a candidate too (its
+// verdict checks every limit, the Segway's look-ups included), unless a clearance is asked for,
+// which only the transcriptions hold.
+void bridgeThroughIpopt(const models::TerrainFollowingModel& vehicle,
+                        const ocp::BoundaryValueProblem& problem, const terrain::ElevationMap* map,
+                        const SeededSolveOptions& options, const Seed& seed,
+                        const ocp::Deadline& within, AttemptLog& log) {
+  const bool clearance = options.transcription.transcription.model.clearance.map != nullptr;
+  SeededSolveOptions parametric = options;
+  parametric.method = CoreMethod::kIpopt;
+  const Clock::time_point t0 = Clock::now();
+  SeededSolution step = attempt(vehicle, problem, map, parametric, &seed, within.left());
+  std::optional<ocp::TranscriptionGuess> guess;
+  if (step.verified.ok) guess = guessOrNothing(step.verified.trajectory);
+  const double length = step.verified.length;
+  log.record(std::move(step), t0, !clearance);
+  if (!guess || within.over()) return;
+  const Seed bridged{"ipopt from " + seed.name, length, std::move(*guess), seed.turning};
+  const Clock::time_point t1 = Clock::now();
+  log.record(attempt(vehicle, problem, map, options, &bridged, within.left()), t1);
+}
+
+// The global seeds as a portfolio. The order: the Dubins words within the attitude limits
+// (shortest first), the search seed (when no word converged and the words are blocked, steep,
+// or the method a transcription), the words across slopes beyond the limits (an optimiser
+// started across a slope may wander far before it finds the way round, which the search's
+// route already follows). Each seed's chain runs within its budget (first_seed_time_s for the
+// first, seed_time_s for the others); the seeds
+// the budget cut are tried again, in the same order, with twice the budget, until one
+// converges or the solve's deadline passes.
+void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
+                    const ocp::BoundaryValueProblem& problem, const terrain::ElevationMap* map,
+                    const SeededSolveOptions& options, const ocp::Deadline& deadline,
+                    AttemptLog& log) {
+  int blocked = 0;
+  const std::vector<Seed> seeds = dubinsSeeds(vehicle, problem, map, options, blocked);
+  const double shortest = seeds.empty() ? 0.0 : seeds.front().length;
+  const long steep_words = std::count_if(seeds.begin(), seeds.end(),
+                                         [](const Seed& seed) { return seed.beyond_limits; });
+  const bool search =
+      map != nullptr && options.search_time_s.value_or(kDefaultSearchTimeS) > 0.0 &&
+      (seeds.empty() || blocked > 0 || steep_words > 0 || isTranscription(options.method));
+  const std::string why = blocked > 0 && seeds.empty()
+                              ? "every Dubins word crosses an impassable cell or no data"
+                          : steep_words > 0 && steep_words == static_cast<long>(seeds.size())
+                              ? "every Dubins word crosses slopes beyond the pitch or roll limits"
+                              : "no Dubins word gave a verified trajectory";
+  std::vector<const Seed*> order;  // nullptr: the search seed
+  for (const Seed& seed : seeds) {
+    if (!seed.beyond_limits) order.push_back(&seed);
+  }
+  if (search) order.push_back(nullptr);
+  for (const Seed& seed : seeds) {
+    if (seed.beyond_limits) order.push_back(&seed);
+  }
+  // Every seed until one converges; after that, in the first round only, a further word within
+  // the attitude limits no longer than retry_length_ratio x the shortest (its optimum on the
+  // terrain may be better).
+  const auto wanted = [&](const Seed* seed) {
+    if (log.empty() || !log.converged()) return true;
+    return log.round == 0 && seed != nullptr && !seed->beyond_limits &&
+           seed->length <= options.retry_length_ratio * shortest;
+  };
+  const bool budgeted = options.seed_time_s > 0.0 && std::isfinite(options.seed_time_s);
+  // The first seed in the order (the shortest word within the limits, else the search seed) is
+  // the likeliest: it gets first_seed_time_s, the others seed_time_s; doubled each round.
+  const Seed* const first = order.empty() ? nullptr : order.front();
+  const double first_budget = std::max(options.seed_time_s, options.first_seed_time_s);
+  // One seed's chain within its budget; whether the budget cut it: no convergence gained, at
+  // least kCutFraction of the budget used (the solvers stop before an iteration they expect
+  // to pass the limit) or the search seed's PRM cut short, and the solve's own clock not run
+  // out.
+  const auto trySeed = [&](const Seed* seed) {
+    if (budgeted) {
+      log.budget_s = std::ldexp(seed == first ? first_budget : options.seed_time_s, log.round);
+    }
+    std::optional<double> limit = deadline.left();
+    if (budgeted) limit = std::min(log.budget_s, limit.value_or(log.budget_s));
+    const ocp::Deadline within(Clock::now(), limit, options.stop);
+    const bool converged_before = log.converged();
+    const Clock::time_point t0 = Clock::now();
+    bool search_cut_short = false;
+    if (seed == nullptr) {
+      SeededSolution found = solveFromSearch(vehicle, problem, *map, options, within.left(), why);
+      search_cut_short = found.search_cut_short;
+      log.record(std::move(found), t0);
+    } else {
+      log.record(attempt(vehicle, problem, map, options, seed, within.left()), t0);
+      if (options.method == CoreMethod::kAuto && !log.converged() && !within.over()) {
+        bridgeThroughIpopt(vehicle, problem, map, options, *seed, within, log);
+      }
+    }
+    const bool gained = log.converged() && !converged_before;
+    constexpr double kCutFraction = 0.8;
+    return budgeted && !gained &&
+           (search_cut_short || (limit && within.elapsed() >= kCutFraction * *limit)) &&
+           !deadline.over();
+  };
+  while (!order.empty()) {
+    std::vector<const Seed*> cut;
+    for (const Seed* seed : order) {
+      if (deadline.over() && !log.empty()) break;
+      if (!wanted(seed)) continue;
+      if (trySeed(seed)) cut.push_back(seed);
+    }
+    if (log.converged() || deadline.over()) break;
+    order = std::move(cut);
+    ++log.round;
+  }
+  if (log.empty()) {
+    log.best().status = ocp::SolveStatus::kInfeasible;
+    log.best().reason =
+        "no seed: every Dubins word crosses an impassable cell or no data and no search seed was "
+        "allowed";
+  }
+}
+
 }  // namespace
 
 SeededSolution seededSolutionOf(ocp::VerifiedTranscription result, std::string method,
@@ -360,115 +525,23 @@ SeededSolution solveSeeded(const models::TerrainFollowingModel& vehicle,
                            const terrain::ElevationMap* map, const SeededSolveOptions& options) {
   const Clock::time_point started = Clock::now();
   const ocp::Deadline deadline(started, options.time_limit_s, options.stop);
-  SeededSolution best;
-  bool any_candidate = false;
-  best.method = coreMethodName(options.method);
-  best.reason = "no attempt was made";
-  // `candidate` false: listed among the attempts, never the result (a bridge's first step when
-  // a clearance is asked for).
-  const auto record = [&](SeededSolution result, const Clock::time_point attempt_started,
-                          bool candidate = true) {
-    SeedAttempt a;
-    a.seed = result.initial_guess;
-    a.method = result.method;
-    a.status = result.status;
-    a.reason = result.reason;
-    a.cost = result.verified.ok ? result.verified.cost : std::numeric_limits<double>::quiet_NaN();
-    a.time_ms = 1e3 * secondsSince(attempt_started);
-    const int iterations = best.iterations + result.iterations;
-    const bool first_candidate = !any_candidate;
-    any_candidate = any_candidate || candidate;
-    std::vector<SeedAttempt> attempts = std::move(best.attempts);
-    attempts.push_back(a);
-    if (candidate && (first_candidate || better(result, best))) best = std::move(result);
-    best.attempts = std::move(attempts);
-    best.iterations = iterations;
-  };
-  // auto, when collocation fails from a word: the parametric ipopt (few unknowns, free speed,
-  // the limits held) from the same word, and collocation again from its trajectory, which
-  // follows the terrain within the limits. ipopt's verified result is a candidate too (its
-  // verdict checks every limit, the Segway's look-ups included), unless a clearance is asked
-  // for, which only the transcriptions hold.
-  const bool clearance = options.transcription.transcription.model.clearance.map != nullptr;
-  const auto bridgeThroughIpopt = [&](const Seed& seed) {
-    SeededSolveOptions parametric = options;
-    parametric.method = CoreMethod::kIpopt;
-    const Clock::time_point t0 = Clock::now();
-    SeededSolution step = attempt(vehicle, problem, map, parametric, &seed, deadline.left());
-    std::optional<ocp::TranscriptionGuess> guess;
-    if (step.verified.ok) guess = guessOrNothing(step.verified.trajectory);
-    const double length = step.verified.length;
-    record(std::move(step), t0, !clearance);
-    if (!guess || deadline.over()) return;
-    const Seed bridged{"ipopt from " + seed.name, length, std::move(*guess), seed.turning};
-    const Clock::time_point t1 = Clock::now();
-    record(attempt(vehicle, problem, map, options, &bridged, deadline.left()), t1);
-  };
-  const bool transcription = isTranscription(options.method);
+  AttemptLog log(options.method, options.on_attempt);
   // A goal no trajectory can reach (boxed in by slopes, lethal or no-data cells): infeasible at
   // once, with the reason, instead of after every seed has spent its iterations.
   std::optional<models::GoalReachability> reachability =
       checkReachability(vehicle, problem, map, options, deadline);
   if (reachability && !reachability->reachable) {
-    best.status = ocp::SolveStatus::kInfeasible;
-    best.reason = reachability->reason;
-    best.reachability = std::move(reachability);
-    best.total_time_ms = 1e3 * secondsSince(started);
-    return best;
-  }
-  if (options.initial_guess == InitialGuessKind::kFlat ||
-      ocp::startMeetsGoal(problem, options.parametric.criteria)) {
+    SeededSolution& out = log.best();
+    out.status = ocp::SolveStatus::kInfeasible;
+    out.reason = reachability->reason;
+  } else if (options.initial_guess == InitialGuessKind::kFlat ||
+             ocp::startMeetsGoal(problem, options.parametric.criteria)) {
     const Clock::time_point t0 = Clock::now();
-    record(attemptFlat(vehicle, problem, map, options, deadline), t0);
+    log.record(attemptFlat(vehicle, problem, map, options, deadline), t0);
   } else {
-    int blocked = 0;
-    const std::vector<Seed> seeds = dubinsSeeds(vehicle, problem, map, options, blocked);
-    const double shortest = seeds.empty() ? 0.0 : seeds.front().length;
-    const auto tryWords = [&](bool beyond_limits) {
-      for (const Seed& seed : seeds) {
-        if (seed.beyond_limits != beyond_limits) continue;
-        if (!best.attempts.empty()) {
-          if (deadline.over()) break;
-          const bool failed = best.status != ocp::SolveStatus::kConverged;
-          if (!failed && seed.length > options.retry_length_ratio * shortest) break;
-        }
-        const Clock::time_point t0 = Clock::now();
-        record(attempt(vehicle, problem, map, options, &seed, deadline.left()), t0);
-        if (options.method == CoreMethod::kAuto && best.status != ocp::SolveStatus::kConverged &&
-            !deadline.over()) {
-          bridgeThroughIpopt(seed);
-        }
-      }
-    };
-    // The words within the attitude limits first; the words across slopes beyond them after
-    // the search seed (an optimiser started across a slope may wander far before it finds the
-    // way round, which the search's route already follows).
-    tryWords(false);
-    const long steep_words = std::count_if(seeds.begin(), seeds.end(),
-                                           [](const Seed& seed) { return seed.beyond_limits; });
-    const bool steep = steep_words > 0;
-    // No word converged (obstacles or slopes in the way of the words, or, for the
-    // transcriptions, terrain the words cross badly): a search seed, whose route follows the
-    // terrain within the limits.
-    if (best.status != ocp::SolveStatus::kConverged && map != nullptr &&
-        options.search_time_s.value_or(kDefaultSearchTimeS) > 0.0 &&
-        (seeds.empty() || blocked > 0 || steep || transcription) && !deadline.over()) {
-      const Clock::time_point t0 = Clock::now();
-      const std::string why =
-          blocked > 0 && seeds.empty() ? "every Dubins word crosses an impassable cell or no data"
-          : steep && steep_words == static_cast<long>(seeds.size())
-              ? "every Dubins word crosses slopes beyond the pitch or roll limits"
-              : "no Dubins word gave a verified trajectory";
-      record(solveFromSearch(vehicle, problem, *map, options, deadline.left(), why), t0);
-    }
-    if (best.status != ocp::SolveStatus::kConverged && !deadline.over()) tryWords(true);
-    if (best.attempts.empty()) {
-      best.status = ocp::SolveStatus::kInfeasible;
-      best.reason =
-          "no seed: every Dubins word crosses an impassable cell or no data and no search seed "
-          "was allowed";
-    }
+    solveFromSeeds(vehicle, problem, map, options, deadline, log);
   }
+  SeededSolution best = std::move(log.best());
   best.reachability = std::move(reachability);
   best.total_time_ms = 1e3 * secondsSince(started);
   return best;

@@ -302,6 +302,13 @@ TEST_F(CliTest, SolveWritesTheReportAndTheTrajectory) {
   EXPECT_THAT(json["initial_guess"].get<std::string>(), HasSubstr("dubins"));
   EXPECT_LT(json["terminal_error"]["position_m"].get<double>(), 1e-3);
   EXPECT_FALSE(json["history"].empty());
+  // The seeds' budgets (the defaults) and each attempt's, printed on stderr as they end.
+  EXPECT_DOUBLE_EQ(json["seed_time_s"].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(json["first_seed_time_s"].get<double>(), 30.0);
+  ASSERT_FALSE(json["attempts"].empty());
+  EXPECT_DOUBLE_EQ(json["attempts"][0]["budget_s"].get<double>(), 30.0);
+  EXPECT_EQ(json["attempts"][0]["round"], 0);
+  EXPECT_THAT(ok.err, HasSubstr("seed budget 30 s, round 0"));
   std::ifstream csv(path("trajectory.csv"));
   std::string header, line, last;
   std::getline(csv, header);

@@ -100,6 +100,33 @@ TEST_F(SeededSolverTest, RestToRestTurnBacksConverge) {
   }
 }
 
+// The seeds as a portfolio: with a first budget far too small for any solve, every seed is
+// cut, and tried again with twice the budget, round after round, until one converges; each
+// attempt reports the budget it ran in.
+TEST_F(SeededSolverTest, SeedsCutByTheirBudgetAreRetriedWithTwiceIt) {
+  const ocp::BoundaryValueProblem problem = sets::turnBacks(1, 7).front();
+  SeededSolveOptions options;
+  options.time_limit_s = 120.0;
+  options.seed_time_s = 1e-3;
+  options.first_seed_time_s = 2e-3;
+  const SeededSolution s = solveSeeded(vehicle_, problem, &map_, options);
+  ASSERT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
+  expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);
+  ASSERT_GE(s.attempts.size(), 2u);
+  EXPECT_EQ(s.attempts.front().round, 0);
+  EXPECT_GT(s.attempts.back().round, 0);
+  for (const SeedAttempt& a : s.attempts) {
+    // The first seed's chain: its attempts, and collocation "ipopt from" it.
+    const bool first = a.seed.find(s.attempts.front().seed) != std::string::npos;
+    const double base = first ? options.first_seed_time_s : options.seed_time_s;
+    EXPECT_DOUBLE_EQ(a.budget_s, base * std::ldexp(1.0, a.round)) << a.seed;
+  }
+  // The rounds in order: a seed is retried only after every seed has had its budget.
+  for (std::size_t i = 1; i < s.attempts.size(); ++i) {
+    EXPECT_GE(s.attempts[i].round, s.attempts[i - 1].round);
+  }
+}
+
 // The parametric ipopt leaves the speed free (speed order 3) and holds v_max and a_max: the
 // smallest rest-to-rest problem is solved.
 TEST_F(SeededSolverTest, ParametricIpoptSolvesRestToRest) {
@@ -253,7 +280,8 @@ TEST_F(SeededSolverTest, WordsAcrossSlopesBeyondTheLimitsComeAfterTheSearchSeed)
   ASSERT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
   ASSERT_FALSE(s.attempts.empty());
   EXPECT_NE(s.attempts.front().seed.find("search"), std::string::npos) << s.attempts.front().seed;
-  // The seed's name reports the budget: the default (no time limit).
+  // The seed's name reports the PRM's budget: the default 10 s (the first seed's budget is
+  // first_seed_time_s, 30 s, and the PRM gets at most half of it).
   EXPECT_NE(s.attempts.front().seed.find(" s of 10 s)"), std::string::npos)
       << s.attempts.front().seed;
   expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);

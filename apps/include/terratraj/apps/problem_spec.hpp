@@ -214,6 +214,11 @@ struct SolverSpec {
   double mesh_refinement_tolerance = 1e-3;  ///< local error that splits an interval [m, rad]
   std::optional<double> min_clearance_m;    ///< clearance from lethal cells [m]; absent = none
   std::optional<double> time_limit_s;       ///< wall-clock limit [s], >= 0; absent = none
+  /// auto seeds: each seed's first budget [s], > 0, doubled for the seeds it cut each round;
+  /// absent: refine::kDefaultSeedTimeS
+  std::optional<double> seed_time_s;
+  /// auto seeds: the first seed's first budget [s], > 0; absent: refine::kDefaultFirstSeedTimeS
+  std::optional<double> first_seed_time_s;
 };
 
 /// `planner`: the global planner.

@@ -18,11 +18,15 @@
 // verified result counts too, unless a clearance is asked for: only the transcriptions hold
 // it). Every attempt is verified (the verdict, the Segway's look-ups included);
 // the best converged cost wins; a second word is tried when the first fails or is within
-// `retry_length_ratio` of it. Before any of this, a goal that cannot be reached at all (boxed
-// in by slopes beyond the pitch and roll limits, lethal or no-data cells) is `infeasible` with
-// the reason (models::checkGoalReachability).
+// `retry_length_ratio` of it. Each seed runs within a budget (`first_seed_time_s` for the
+// first, `seed_time_s` for the others); the seeds cut
+// by theirs are retried, in the same order, with twice the budget, round after round (a
+// portfolio: a seed on which the solver wanders costs its budget, not the whole time limit). Before
+// any of this, a goal that cannot be reached at all (boxed in by slopes beyond the pitch and roll
+// limits, lethal or no-data cells) is `infeasible` with the reason (models::checkGoalReachability).
 
 #include <atomic>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,6 +63,23 @@ ocp::TranscriptionSolveOptions defaultCoreTranscription();
 /// real DEMs), so the budget runs out only when the search finds nothing.
 inline constexpr double kDefaultSearchTimeS = 10.0;
 
+/// One attempt: a seed and a solver.
+struct SeedAttempt {
+  std::string seed;    ///< "dubins LSL (12.3 m)", "flat heuristic", "search (prm)"
+  std::string method;  ///< the solver
+  ocp::SolveStatus status = ocp::SolveStatus::kError;
+  std::string reason;
+  double cost = 0.0;  ///< verified cost (NaN without a re-simulation)
+  double time_ms = 0.0;
+  double budget_s = 0.0;  ///< the wall clock its seed's chain was given [s] (inf: none)
+  int round = 0;          ///< 0: the seed's first budget; r: retried with 2^r times it
+};
+
+/// The default of SeededSolveOptions::seed_time_s [s].
+inline constexpr double kDefaultSeedTimeS = 10.0;
+/// The default of SeededSolveOptions::first_seed_time_s [s].
+inline constexpr double kDefaultFirstSeedTimeS = 30.0;
+
 /// Settings of solveSeeded().
 struct SeededSolveOptions {
   CoreMethod method = CoreMethod::kAuto;
@@ -91,7 +112,8 @@ struct SeededSolveOptions {
   double seed_limit_slack = 0.1;
   /// Search seed: the PRM's budget [s] when no word gave a converged result (0: none); it
   /// stops at its first solution, so the budget is spent only when it finds none. Absent:
-  /// kDefaultSearchTimeS. Never more than half the time left (searchSeedBudget()).
+  /// kDefaultSearchTimeS. Never more than half the time left to the search seed's chain (its
+  /// budget, seed_time_s, or the solve's time left; searchSeedBudget()).
   /// `terratraj solve` passes planner.time_limit_s.
   std::optional<double> search_time_s;
   std::uint64_t search_seed = 1;  ///< the PRM's random seed
@@ -99,22 +121,25 @@ struct SeededSolveOptions {
   /// (models::checkGoalReachability); when not, kInfeasible with its reason before any seed is
   /// tried. std::nullopt: not checked.
   std::optional<models::GoalReachabilityOptions> reachability = models::GoalReachabilityOptions{};
+  /// Each seed's first budget [s], > 0: the wall clock of its chain of attempts (a word's
+  /// solve and, for auto, its bridge through ipopt; the search seed's PRM and refinement).
+  /// A seed cut by its budget is tried again after the others have had theirs, with twice the
+  /// budget, round after round, until one converges or time_limit_s runs out, so one seed on
+  /// which the solver wanders cannot spend the time another needs (solveSeeded).
+  double seed_time_s = kDefaultSeedTimeS;
+  /// The first seed's first budget [s] (at least seed_time_s): the first seed in the order, the
+  /// shortest word within the attitude limits (else the search seed), is the likeliest to
+  /// converge, and on rough terrain its mesh rounds can take tens of seconds (a Segway problem
+  /// on davosdorf converges from its first word in 32 s).
+  double first_seed_time_s = kDefaultFirstSeedTimeS;
   std::optional<double> time_limit_s;       ///< wall clock of the whole solve [s]; absent: none
   const std::atomic<bool>* stop = nullptr;  ///< set from outside (SIGINT): no further attempt
+  /// Called after each attempt with its record (progress; may be empty). Must not throw.
+  std::function<void(const SeedAttempt&)> on_attempt;
 };
 
 /// The iterations of the parametric ipopt under `options`.
 int ipoptMaxIterations(const SeededSolveOptions& options);
-
-/// One attempt: a seed and a solver.
-struct SeedAttempt {
-  std::string seed;    ///< "dubins LSL (12.3 m)", "flat heuristic", "search (prm)"
-  std::string method;  ///< the solver
-  ocp::SolveStatus status = ocp::SolveStatus::kError;
-  std::string reason;
-  double cost = 0.0;  ///< verified cost (NaN without a re-simulation)
-  double time_ms = 0.0;
-};
 
 /// The outcome.
 struct SeededSolution {
@@ -130,6 +155,9 @@ struct SeededSolution {
   int iterations = 0;                                       ///< of every attempt
   std::vector<SeedAttempt> attempts;                        ///< every attempt, in order
   std::optional<models::GoalReachability> reachability;     ///< the check, when made
+  /// The search seed's PRM found nothing within a budget the time left had cut below
+  /// search_time_s: more time may find a path (solveSeeded retries it in a later round).
+  bool search_cut_short = false;
   double total_time_ms = 0.0;
 };
 
