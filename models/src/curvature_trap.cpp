@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <queue>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace terratraj::models {
@@ -73,7 +74,7 @@ class TrapSearch {
       const int j = static_cast<int>(cell / static_cast<std::size_t>(n_));
       if (!admissible(i, j, k)) continue;  // tested when taken: most queued boxes never are
       ++out.boxes_settled;
-      if (settled_position_.emplace(cell, 1).second) out.area_m2 += h_ * h_;
+      if (settled_position_.insert(cell).second) out.area_m2 += h_ * h_;
       out.radius_m = std::max(out.radius_m, e.radius);
       if (out.boxes_settled > options_.max_boxes) return TrapOutcome::kUndecided;
       if (options_.time_limit_s && out.boxes_settled % 256 == 0 &&
@@ -253,7 +254,7 @@ class TrapSearch {
   // Only the boxes touched are stored: over open ground the search meets the window's edge
   // after a few hundred boxes, in a pocket it settles its few thousands.
   std::unordered_map<std::size_t, std::uint8_t> flags_;
-  std::unordered_map<std::size_t, std::uint8_t> settled_position_;
+  std::unordered_set<std::size_t> settled_position_;
   std::vector<Hull> hulls_ = std::vector<Hull>(64);
   std::priority_queue<Entry, std::vector<Entry>, Farther> queue_;
   std::optional<PlanarPose> other_;
