@@ -1,6 +1,5 @@
 #include "terratraj/apps/solve_command.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <ostream>
@@ -168,7 +167,7 @@ nlohmann::json seededReportJson(const refine::SeededSolution& solution,
        seeded.time_limit_s ? nlohmann::json(*seeded.time_limit_s) : nlohmann::json(nullptr)},
       {"solve_time_ms", solution.total_time_ms},
       {"seed_time_s", seeded.seed_time_s},
-      {"first_seed_time_s", std::max(seeded.seed_time_s, seeded.first_seed_time_s)},
+      {"first_seed_time_s", refine::firstSeedBudget(seeded)},
       {"tolerance",
        {{"position_m", seeded.parametric.criteria.position_m},
         {"heading_rad", seeded.parametric.criteria.heading_rad},

@@ -452,17 +452,17 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
   // The first seed in the order (the shortest word within the limits, else the search seed) is
   // the likeliest: it gets first_seed_time_s, the others seed_time_s; doubled each round.
   const Seed* const first = order.empty() ? nullptr : order.front();
-  const double first_budget = std::max(options.seed_time_s, options.first_seed_time_s);
+  const double first_budget = firstSeedBudget(options);
   // One seed's chain within its budget; whether the budget cut it: no convergence gained, at
   // least kCutFraction of the budget used (the solvers stop before an iteration they expect
   // to pass the limit) or the search seed's PRM cut short, and the solve's own clock not run
   // out.
   const auto trySeed = [&](const Seed* seed) {
+    std::optional<double> limit = deadline.left();
     if (budgeted) {
       log.budget_s = std::ldexp(seed == first ? first_budget : options.seed_time_s, log.round);
+      limit = std::min(log.budget_s, limit.value_or(log.budget_s));
     }
-    std::optional<double> limit = deadline.left();
-    if (budgeted) limit = std::min(log.budget_s, limit.value_or(log.budget_s));
     const ocp::Deadline within(Clock::now(), limit, options.stop);
     const bool converged_before = log.converged();
     const Clock::time_point t0 = Clock::now();
@@ -503,6 +503,10 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
 }
 
 }  // namespace
+
+double firstSeedBudget(const SeededSolveOptions& options) {
+  return std::max(options.seed_time_s, options.first_seed_time_s);
+}
 
 SeededSolution seededSolutionOf(ocp::VerifiedTranscription result, std::string method,
                                 std::string initial_guess) {

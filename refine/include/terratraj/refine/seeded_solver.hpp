@@ -125,7 +125,8 @@ struct SeededSolveOptions {
   /// solve and, for auto, its bridge through ipopt; the search seed's PRM and refinement).
   /// A seed cut by its budget is tried again after the others have had theirs, with twice the
   /// budget, round after round, until one converges or time_limit_s runs out, so one seed on
-  /// which the solver wanders cannot spend the time another needs (solveSeeded).
+  /// which the solver wanders cannot spend the time another needs (solveSeeded). <= 0 or
+  /// infinite: no budgets (each seed may use all the time left).
   double seed_time_s = kDefaultSeedTimeS;
   /// The first seed's first budget [s] (at least seed_time_s): the first seed in the order, the
   /// shortest word within the attitude limits (else the search seed), is the likeliest to
@@ -140,6 +141,10 @@ struct SeededSolveOptions {
 
 /// The iterations of the parametric ipopt under `options`.
 int ipoptMaxIterations(const SeededSolveOptions& options);
+
+/// The first seed's first budget under `options` [s]: first_seed_time_s, never below
+/// seed_time_s.
+double firstSeedBudget(const SeededSolveOptions& options);
 
 /// The outcome.
 struct SeededSolution {
