@@ -14,7 +14,8 @@ nlohmann::json attemptsJson(const std::vector<refine::SeedAttempt>& attempts) {
                     {"cost", jsonNumber(a.cost)},
                     {"time_ms", a.time_ms},
                     {"budget_s", jsonNumber(a.budget_s)},
-                    {"round", a.round}});
+                    {"round", a.round},
+                    {"time_limit_reached", a.time_limit_reached}});
   }
   return rows;
 }

@@ -107,6 +107,12 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
     solution.status = status;
     solution.reason = std::move(reason);
     if (!timed) solution.total_time_ms = elapsed_ms();
+    // Whatever step the clock stopped (the initial guess's integration included), a result
+    // short of converged at the time limit is unfinished.
+    if (status != SolveStatus::kConverged && options.time_limit_s &&
+        elapsed_ms() >= 1e3 * *options.time_limit_s) {
+      solution.time_limit_reached = true;
+    }
     return solution;
   };
   if (startMeetsGoal(problem, options.criteria)) {
@@ -174,7 +180,10 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
          solution.solver.status == SolveStatus::kConverged && solution.verified.ok &&
          solution.verdict.failure == models::VerdictFailure::kBreaksLimits &&
          solution.path_points < options.max_path_points) {
-    if (options.time_limit_s && elapsed_ms() >= 1e3 * *options.time_limit_s) break;
+    if (options.time_limit_s && elapsed_ms() >= 1e3 * *options.time_limit_s) {
+      solution.time_limit_reached = true;
+      break;
+    }
     solution.path_points = std::min(2 * solution.path_points - 1, options.max_path_points);
     solver_options.path_points = solution.path_points;
     if (options.time_limit_s) {
@@ -192,6 +201,7 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
     verify();
   }
   solution.total_time_ms = elapsed_ms() - verification_ms;
+  solution.time_limit_reached = solution.time_limit_reached || solution.solver.time_limit_reached;
   timed = true;
   solution.verification_time_ms = verification_ms;
   if (solution.solver.status != SolveStatus::kConverged) {

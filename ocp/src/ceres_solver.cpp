@@ -177,8 +177,7 @@ SolveResult runCeres(ParametricTrajectoryModel& model, const Eigen::VectorXd& q0
     if (options.time_limit_s) {
       remaining_s = *options.time_limit_s - accounting.elapsedSeconds();
       if (remaining_s <= 0.0) {
-        return finish(SolveStatus::kMaxIterations,
-                      "time limit of " + std::to_string(*options.time_limit_s) + " s reached");
+        return accounting.finishOnTimeLimit(*options.time_limit_s);
       }
     }
     solver_options.max_num_iterations = options.max_iterations - used;

@@ -486,6 +486,8 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
     outcome = {SolveStatus::kConverged, ""};
   }
   result.q = q;
+  result.time_limit_reached = outcome.status != SolveStatus::kConverged &&
+                              (nlp->timedOut() || status == Ipopt::Maximum_CpuTime_Exceeded);
   if (nlp->finalized() && nlp->finalLambda().size() >= 3) {
     result.lambda = nlp->finalLambda().head<3>();
   }

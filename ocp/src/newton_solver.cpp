@@ -155,8 +155,7 @@ SolveResult solveNewton(ParametricTrajectoryModel& model, const NewtonStart& sta
                     "max_iterations = " + std::to_string(options.max_iterations) + " reached");
     }
     if (accounting.pastTimeLimit(options.time_limit_s)) {
-      return finish(SolveStatus::kMaxIterations,
-                    "time limit of " + std::to_string(*options.time_limit_s) + " s reached");
+      return accounting.finishOnTimeLimit(*options.time_limit_s);
     }
     if (options.hessian == HessianApproximation::kFiniteDifference) {
       if (!model.lagrangianHessian(q, lambda, mode, options.hessian_step, w)) {

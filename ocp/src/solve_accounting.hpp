@@ -41,6 +41,13 @@ class SolveAccounting {
     result_->integrations = model_->integrations() - integrations_before_;
     return *result_;
   }
+  /// finish() with kMaxIterations for a solve stopped by `limit_s` [s]: the reason names it
+  /// and the result says so (time_limit_reached: an unfinished iterate, more time may differ).
+  SolveResult finishOnTimeLimit(double limit_s) const {
+    result_->time_limit_reached = true;
+    return finish(SolveStatus::kMaxIterations,
+                  "time limit of " + std::to_string(limit_s) + " s reached");
+  }
 
  private:
   std::chrono::steady_clock::time_point started_;

@@ -160,6 +160,9 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
   VerifiedTranscription out;
   const auto finish = [&]() -> VerifiedTranscription& {
     out.solve_time_ms = 1e3 * secondsSince(started);
+    out.time_limit_reached = out.time_limit_reached || out.solution.result.time_limit_reached ||
+                             (out.status != SolveStatus::kConverged && options.time_limit_s &&
+                              out.solve_time_ms >= 1e3 * *options.time_limit_s);
     return out;
   };
   if (std::optional<std::string> why = validateTranscriptionSolveOptions(options)) {
@@ -188,6 +191,7 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
   for (int round = 0; round <= options.max_rounds; ++round) {
     if (round > 0 && deadline.over()) {
       out.reason += " (no further round: the time limit is reached or a stop was requested)";
+      out.time_limit_reached = true;
       break;
     }
     transcription.time_limit_s = deadline.left();

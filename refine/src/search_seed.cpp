@@ -58,8 +58,8 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
            << "): the goal may be unreachable";
     out.status = ocp::SolveStatus::kInfeasible;
     out.reason = reason.str();
-    out.search_cut_short = budget < options.search_time_s.value_or(kDefaultSearchTimeS) &&
-                           !(options.stop != nullptr && options.stop->load());
+    out.time_limit_reached = budget < options.search_time_s.value_or(kDefaultSearchTimeS) &&
+                             !(options.stop != nullptr && options.stop->load());
     return out;
   }
   std::ostringstream seed;
@@ -91,6 +91,9 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
   out.verdict = std::move(r.verdict);
   out.history = std::move(r.history);
   out.iterations = r.iterations;
+  out.time_limit_reached = out.status != ocp::SolveStatus::kConverged &&
+                           ((r.transcription && r.transcription->result.time_limit_reached) ||
+                            (refine.time_limit_s && r.solve_time_ms >= 1e3 * *refine.time_limit_s));
   if (r.transcription) {
     ocp::VerifiedTranscription t;
     t.solution = std::move(*r.transcription);

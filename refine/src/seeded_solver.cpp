@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <utility>
 
@@ -251,6 +252,7 @@ SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
   out.verdict = result.verdict;
   out.history = result.solver.history;
   out.iterations = result.solver.iterations;
+  out.time_limit_reached = result.time_limit_reached;
   out.parametric = std::move(result);
   return out;
 }
@@ -359,6 +361,7 @@ class AttemptLog {
     a.time_ms = 1e3 * secondsSince(attempt_started);
     a.budget_s = budget_s;
     a.round = round;
+    a.time_limit_reached = result.time_limit_reached;
     const int iterations = best_.iterations + result.iterations;
     const bool first_candidate = !any_candidate_;
     any_candidate_ = any_candidate_ || candidate;
@@ -387,8 +390,9 @@ class AttemptLog {
 // limits held) from the same word, and collocation again from its trajectory, which follows the
 // terrain within the limits; within `within`. ipopt's verified result is a candidate too (its
 // verdict checks every limit, the Segway's look-ups included), unless a clearance is asked for,
-// which only the transcriptions hold.
-void bridgeThroughIpopt(const models::TerrainFollowingModel& vehicle,
+// which only the transcriptions hold. Returns whether the bridge ended on its own (neither step
+// stopped by the clock): run again, it would end the same.
+bool bridgeThroughIpopt(const models::TerrainFollowingModel& vehicle,
                         const ocp::BoundaryValueProblem& problem, const terrain::ElevationMap* map,
                         const SeededSolveOptions& options, const Seed& seed,
                         const ocp::Deadline& within, AttemptLog& log) {
@@ -397,14 +401,20 @@ void bridgeThroughIpopt(const models::TerrainFollowingModel& vehicle,
   parametric.method = CoreMethod::kIpopt;
   const Clock::time_point t0 = Clock::now();
   SeededSolution step = attempt(vehicle, problem, map, parametric, &seed, within.left());
+  const bool timed_out = step.time_limit_reached;
   std::optional<ocp::TranscriptionGuess> guess;
   if (step.verified.ok) guess = guessOrNothing(step.verified.trajectory);
   const double length = step.verified.length;
   log.record(std::move(step), t0, !clearance);
-  if (!guess || within.over()) return;
+  if (timed_out) return false;
+  if (!guess) return true;
+  if (within.over()) return false;
   const Seed bridged{"ipopt from " + seed.name, length, std::move(*guess), seed.turning};
   const Clock::time_point t1 = Clock::now();
-  log.record(attempt(vehicle, problem, map, options, &bridged, within.left()), t1);
+  SeededSolution polished = attempt(vehicle, problem, map, options, &bridged, within.left());
+  const bool ended = !polished.time_limit_reached;
+  log.record(std::move(polished), t1);
+  return ended;
 }
 
 // The global seeds as a portfolio. The order: the Dubins words within the attitude limits
@@ -414,7 +424,8 @@ void bridgeThroughIpopt(const models::TerrainFollowingModel& vehicle,
 // route already follows). Each seed's chain runs within its budget (first_seed_time_s for the
 // first, seed_time_s for the others); the seeds
 // the budget cut are tried again, in the same order, with twice the budget, until one
-// converges or the solve's deadline passes.
+// converges or the solve's deadline passes; a word's steps that ended on their own are not
+// repeated.
 void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
                     const ocp::BoundaryValueProblem& problem, const terrain::ElevationMap* map,
                     const SeededSolveOptions& options, const ocp::Deadline& deadline,
@@ -453,9 +464,17 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
   // the likeliest: it gets first_seed_time_s, the others seed_time_s; doubled each round.
   const Seed* const first = order.empty() ? nullptr : order.front();
   const double first_budget = firstSeedBudget(options);
-  // One seed's chain within its budget; whether the budget cut it: no convergence gained, at
-  // least kCutFraction of the budget used (the solvers stop before an iteration they expect
-  // to pass the limit) or the search seed's PRM cut short, and the solve's own clock not run
+  // Which steps of each word's chain ended on their own (not by the clock): the solvers are
+  // deterministic, so a later round skips them rather than spend its budget on the same result
+  // (a collocation that stopped at its iteration cap within the budget, 5-8 s on davosdorf).
+  struct ChainProgress {
+    bool solved = false;   ///< the method's attempt from the word
+    bool bridged = false;  ///< auto's bridge through ipopt
+  };
+  std::map<const Seed*, ChainProgress> progress;
+  // One seed's chain within its budget; whether the budget cut it: no convergence gained, a
+  // step of a word's chain stopped by the clock or not reached (the search seed: at least
+  // kCutFraction of the budget used, or its PRM cut short), and the solve's own clock not run
   // out.
   const auto trySeed = [&](const Seed* seed) {
     std::optional<double> limit = deadline.left();
@@ -466,22 +485,28 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
     const ocp::Deadline within(Clock::now(), limit, options.stop);
     const bool converged_before = log.converged();
     const Clock::time_point t0 = Clock::now();
-    bool search_cut_short = false;
+    bool unfinished = false;
     if (seed == nullptr) {
       SeededSolution found = solveFromSearch(vehicle, problem, *map, options, within.left(), why);
-      search_cut_short = found.search_cut_short;
+      constexpr double kCutFraction = 0.8;  // the solvers stop before an iteration past it
+      unfinished = found.time_limit_reached || (limit && within.elapsed() >= kCutFraction * *limit);
       log.record(std::move(found), t0);
     } else {
-      log.record(attempt(vehicle, problem, map, options, seed, within.left()), t0);
-      if (options.method == CoreMethod::kAuto && !log.converged() && !within.over()) {
-        bridgeThroughIpopt(vehicle, problem, map, options, *seed, within, log);
+      ChainProgress& done = progress[seed];
+      if (!done.solved) {
+        SeededSolution result = attempt(vehicle, problem, map, options, seed, within.left());
+        done.solved = !result.time_limit_reached;
+        log.record(std::move(result), t0);
       }
+      if (options.method == CoreMethod::kAuto && !log.converged() && !done.bridged) {
+        done.bridged = !within.over() &&
+                       bridgeThroughIpopt(vehicle, problem, map, options, *seed, within, log);
+        unfinished = !done.bridged;
+      }
+      unfinished = unfinished || !done.solved;
     }
     const bool gained = log.converged() && !converged_before;
-    constexpr double kCutFraction = 0.8;
-    return budgeted && !gained &&
-           (search_cut_short || (limit && within.elapsed() >= kCutFraction * *limit)) &&
-           !deadline.over();
+    return budgeted && !gained && unfinished && !deadline.over();
   };
   while (!order.empty()) {
     std::vector<const Seed*> cut;
@@ -520,6 +545,7 @@ SeededSolution seededSolutionOf(ocp::VerifiedTranscription result, std::string m
   out.history = result.history;
   out.iterations = result.iterations;
   out.total_time_ms = result.solve_time_ms;
+  out.time_limit_reached = result.time_limit_reached;
   out.transcription = std::move(result);
   return out;
 }

@@ -360,18 +360,23 @@ TEST_F(NlpSolvers, IterationLimitsAreReported) {
   ceres_options.max_iterations = 1;
   const SolveResult ceres = solveCeres(model, q0, ceres_options);
   EXPECT_EQ(ceres.status, SolveStatus::kMaxIterations) << ceres.reason;
+  // An iteration cap is not the clock: the same options would end the same again.
+  EXPECT_FALSE(ipopt.time_limit_reached);
+  EXPECT_FALSE(ceres.time_limit_reached);
 
-  // A time limit of zero stops both at once.
+  // A time limit of zero stops both at once, and they say the clock stopped them.
   ipopt_options.max_iterations = 100;
   ipopt_options.time_limit_s = 0.0;
   const SolveResult ipopt_timed = solveIpopt(model, nullptr, q0, ipopt_options);
   EXPECT_EQ(ipopt_timed.status, SolveStatus::kMaxIterations) << ipopt_timed.reason;
   EXPECT_NE(ipopt_timed.reason.find("time limit"), std::string::npos) << ipopt_timed.reason;
+  EXPECT_TRUE(ipopt_timed.time_limit_reached);
   ceres_options.max_iterations = 100;
   ceres_options.time_limit_s = 0.0;
   const SolveResult ceres_timed = solveCeres(model, q0, ceres_options);
   EXPECT_EQ(ceres_timed.status, SolveStatus::kMaxIterations) << ceres_timed.reason;
   EXPECT_NE(ceres_timed.reason.find("time limit"), std::string::npos) << ceres_timed.reason;
+  EXPECT_TRUE(ceres_timed.time_limit_reached);
 }
 
 // Ipopt's own test is 100 times tighter than the solve's criteria: an iteration limit that ends

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "../terrain/test_maps.hpp"
@@ -124,6 +125,47 @@ TEST_F(SeededSolverTest, SeedsCutByTheirBudgetAreRetriedWithTwiceIt) {
   // The rounds in order: a seed is retried only after every seed has had its budget.
   for (std::size_t i = 1; i < s.attempts.size(); ++i) {
     EXPECT_GE(s.attempts[i].round, s.attempts[i - 1].round);
+  }
+}
+
+// A word whose steps end on their own (here at iteration caps far too small to converge) is
+// not retried: with more time its deterministic steps would end the same; and the transcriptions
+// and the parametric solvers say when the clock, not a cap, stopped them.
+TEST_F(SeededSolverTest, StepsThatEndedOnTheirOwnAreNotRetried) {
+  const ocp::BoundaryValueProblem problem = sets::turnBacks(1, 7).front();
+  SeededSolveOptions options;
+  options.time_limit_s = 120.0;
+  options.seed_time_s = 60.0;
+  options.transcription.transcription.max_iterations = 2;
+  options.ipopt_max_iterations = 2;
+  const SeededSolution s = solveSeeded(vehicle_, problem, &map_, options);
+  ASSERT_NE(s.status, ocp::SolveStatus::kConverged);
+  EXPECT_FALSE(s.time_limit_reached);
+  ASSERT_GE(s.attempts.size(), 2u);
+  for (const SeedAttempt& a : s.attempts) {
+    EXPECT_EQ(a.round, 0) << a.seed << ": " << a.reason;
+    EXPECT_EQ(a.reason.find("time limit"), std::string::npos) << a.seed << ": " << a.reason;
+  }
+  // Budgets the clock cuts (some steps of a chain end on their own within them, some not):
+  // cut words are retried, and a retry repeats a step (a seed and method) only if the clock
+  // stopped it before.
+  options.seed_time_s = 0.02;
+  options.first_seed_time_s = 0.02;
+  options.time_limit_s = 1.0;
+  const SeededSolution cut = solveSeeded(vehicle_, problem, &map_, options);
+  ASSERT_NE(cut.status, ocp::SolveStatus::kConverged);
+  EXPECT_GT(cut.attempts.back().round, 0);
+  EXPECT_TRUE(std::any_of(cut.attempts.begin(), cut.attempts.end(),
+                          [](const SeedAttempt& a) { return a.time_limit_reached; }));
+  for (std::size_t i = 0; i < cut.attempts.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      const SeedAttempt &earlier = cut.attempts[j], &later = cut.attempts[i];
+      if (earlier.seed == later.seed && earlier.method == later.method) {
+        EXPECT_TRUE(earlier.time_limit_reached)
+            << later.seed << " by " << later.method << " repeated in round " << later.round
+            << " after ending on its own: " << earlier.reason;
+      }
+    }
   }
 }
 

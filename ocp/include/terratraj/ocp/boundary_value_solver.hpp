@@ -70,6 +70,9 @@ struct BoundaryValueSolution {
   double total_time_ms = 0.0;         ///< initial guess + solver [ms]
   double verification_time_ms = 0.0;  ///< the re-simulation [ms]
   int path_points = 0;  ///< ipopt: path points of the last solve (0 for the other methods)
+  /// The time limit ended the solve, or a further round with more path points that its
+  /// verdict asked for: with more time the result may differ (else it would be the same).
+  bool time_limit_reached = false;
 };
 
 /// Solves `problem` on `vehicle`; `map` (optional: no map rules without it) supplies the

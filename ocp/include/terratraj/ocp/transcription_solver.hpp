@@ -78,6 +78,9 @@ struct VerifiedTranscription {
   std::vector<IterationRecord> history;      ///< every round's iterations, numbered on
   int iterations = 0;                        ///< all rounds
   double solve_time_ms = 0.0;                ///< all rounds, with verification [ms]
+  /// The time limit (or a stop) ended the last round's solve or a round the verdict asked for:
+  /// with more time the result may differ (else the same options give the same result).
+  bool time_limit_reached = false;
 };
 
 /// Why the options cannot be used, or std::nullopt.

@@ -19,9 +19,10 @@
 // it). Every attempt is verified (the verdict, the Segway's look-ups included);
 // the best converged cost wins; a second word is tried when the first fails or is within
 // `retry_length_ratio` of it. Each seed runs within a budget (`first_seed_time_s` for the
-// first, `seed_time_s` for the others); the seeds cut
-// by theirs are retried, in the same order, with twice the budget, round after round (a
-// portfolio: a seed on which the solver wanders costs its budget, not the whole time limit). Before
+// first, `seed_time_s` for the others); the seeds cut by theirs (a step stopped by the clock)
+// are retried, in the same order, with twice the budget, round after round, repeating only the
+// steps the clock stopped (a portfolio: a seed on which the solver wanders costs its budget,
+// not the whole time limit). Before
 // any of this, a goal that cannot be reached at all (boxed in by slopes beyond the pitch and roll
 // limits, lethal or no-data cells) is `infeasible` with the reason (models::checkGoalReachability).
 
@@ -73,6 +74,8 @@ struct SeedAttempt {
   double time_ms = 0.0;
   double budget_s = 0.0;  ///< the wall clock its seed's chain was given [s] (inf: none)
   int round = 0;          ///< 0: the seed's first budget; r: retried with 2^r times it
+  /// Stopped by the clock (SeededSolution::time_limit_reached): a later round may repeat it.
+  bool time_limit_reached = false;
 };
 
 /// The default of SeededSolveOptions::seed_time_s [s].
@@ -160,9 +163,11 @@ struct SeededSolution {
   int iterations = 0;                                       ///< of every attempt
   std::vector<SeedAttempt> attempts;                        ///< every attempt, in order
   std::optional<models::GoalReachability> reachability;     ///< the check, when made
-  /// The search seed's PRM found nothing within a budget the time left had cut below
-  /// search_time_s: more time may find a path (solveSeeded retries it in a later round).
-  bool search_cut_short = false;
+  /// The result's attempt ended by its clock (a solver's time limit, a verification round
+  /// it could not start, the search seed's PRM budget cut below search_time_s): with more time
+  /// it may end otherwise. Else the same seed and options give the same result again, which
+  /// solveSeeded's later rounds do not repeat.
+  bool time_limit_reached = false;
   double total_time_ms = 0.0;
 };
 
