@@ -1,8 +1,10 @@
 #include "terratraj/models/rover_integrator.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "rover_integrator_internal.hpp"
 
@@ -298,8 +300,16 @@ void RoverIntegrator::integrateFixedStep(const Eigen::Vector3d& initial,
       if (integrand != nullptr) result.integral_sensitivity = y.integral_s;
     }
   };
+  const std::optional<std::chrono::steady_clock::time_point>& deadline = options_.deadline;
   for (long i = 0; i < n; ++i) {
     const double t = duration * static_cast<double>(i) / static_cast<double>(n);
+    if (deadline && (i & 63) == 63 && std::chrono::steady_clock::now() > *deadline) {
+      result.status = IntegrationStatus::kSolverFailure;
+      result.message = "fixed step: stopped at the time limit after " + std::to_string(i) +
+                       " steps at t = " + std::to_string(t) + " s";
+      finish(t);
+      return;
+    }
     AttitudeStatus status = record_samples_until(t, t + h, false);
     if (status == AttitudeStatus::kOk) status = scheme.step(options_.method, t, h, y);
     if (status != AttitudeStatus::kOk) {

@@ -138,12 +138,20 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
   }
   const int unknowns =
       ParametricControls(problem.start, problem.goal, problem.orders).parameterCount();
-  solution.initial_guess = options.initial_q.size() == unknowns
-                               ? flatInitialGuess(problem, vehicle.surface(), options.initial_q)
-                               : flatInitialGuess(problem, vehicle.surface());
+  GuessDeadline guess_deadline;
+  if (options.time_limit_s) {
+    guess_deadline = started + std::chrono::duration_cast<Clock::duration>(
+                                   std::chrono::duration<double>(*options.time_limit_s));
+  }
+  solution.initial_guess =
+      options.initial_q.size() == unknowns
+          ? flatInitialGuess(problem, vehicle.surface(), options.initial_q, guess_deadline)
+          : flatInitialGuess(problem, vehicle.surface(), guess_deadline);
   if (!solution.initial_guess.ok) {
-    solution.solver.status = SolveStatus::kInfeasible;
-    return finish(SolveStatus::kInfeasible, solution.initial_guess.reason);
+    // Stopped by the clock: as a solver stopped by it (the fallback in finish() says so).
+    const bool timed_out = guess_deadline && Clock::now() > *guess_deadline;
+    solution.solver.status = timed_out ? SolveStatus::kMaxIterations : SolveStatus::kInfeasible;
+    return finish(solution.solver.status, solution.initial_guess.reason);
   }
   // The solver aims inside the criteria, so that the re-simulation (tighter integration) and
   // the CSV's rounding cannot push a converged end over the verdict's tolerance.

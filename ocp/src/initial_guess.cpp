@@ -31,10 +31,11 @@ Eigen::VectorXd fitClosedPolynomial(int order, double delta, Target target) {
 }
 
 // Flat-ground integration: RK4 with steps of 0.1 s (the flat map is smooth; this is a seed).
-ParametricModelOptions flatOptions() {
+ParametricModelOptions flatOptions(const GuessDeadline& deadline) {
   ParametricModelOptions options;
   options.integrator.method = models::IntegrationMethod::kRk4;
   options.integrator.step = 0.1;
+  options.integrator.deadline = deadline;
   return options;
 }
 
@@ -89,8 +90,9 @@ Eigen::VectorXd heuristicGuess(const BoundaryValueProblem& problem) {
 }
 
 InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
-                              const terrain::TerrainSurface& surface) {
-  return flatInitialGuess(problem, surface, heuristicGuess(problem));
+                              const terrain::TerrainSurface& surface,
+                              const GuessDeadline& deadline) {
+  return flatInitialGuess(problem, surface, heuristicGuess(problem), deadline);
 }
 
 Eigen::VectorXd fitParametricControls(const BoundaryValueProblem& problem,
@@ -132,12 +134,12 @@ Eigen::VectorXd fitParametricControls(const BoundaryValueProblem& problem,
 
 InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
                               const terrain::TerrainSurface& surface,
-                              const Eigen::VectorXd& start_q) {
+                              const Eigen::VectorXd& start_q, const GuessDeadline& deadline) {
   InitialGuess guess;
   const FlatGroundModel flat(surface);
   BoundaryValueProblem flat_problem = problem;
   flat_problem.cost.kind = CostKind::kTime;  // no slope to dwell on
-  ParametricTrajectoryModel model(flat, flat_problem, flatOptions());
+  ParametricTrajectoryModel model(flat, flat_problem, flatOptions(deadline));
   const int itf = model.finalTimeIndex();
   Eigen::VectorXd q = start_q;
   guess.q = q;
@@ -146,15 +148,18 @@ InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
   ParametricEvaluation at, trial;
   bool solved = false;
   double mu = 1e-6;
+  const auto past_deadline = [&] {
+    return deadline && std::chrono::steady_clock::now() > *deadline;
+  };
   if (model.evaluate(q, DerivativeMode::kSensitivity, at)) {
-    for (int iteration = 0; iteration < 60 && !solved; ++iteration) {
+    for (int iteration = 0; iteration < 60 && !solved && !past_deadline(); ++iteration) {
       if (at.terminal_error.norm() < 1e-9) {
         solved = true;
         break;
       }
       const Eigen::MatrixXd& a = at.jacobian;
       bool improved = false;
-      for (int tries = 0; tries < 30 && !improved; ++tries, mu *= 10.0) {
+      for (int tries = 0; tries < 30 && !improved && !past_deadline(); ++tries, mu *= 10.0) {
         const Eigen::Matrix3d aat = a * a.transpose() + mu * Eigen::Matrix3d::Identity();
         Eigen::VectorXd d = -a.transpose() * aat.ldlt().solve(at.terminal_error);
         if (d(itf) < 0.0) d *= std::min(1.0, 0.5 * q(itf) / -d(itf));
@@ -172,6 +177,10 @@ InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
     solved = solved || at.terminal_error.norm() < 1e-6;
   }
   guess.integrations = model.integrations();
+  if (!solved && past_deadline()) {
+    guess.reason = "time limit reached while fitting the flat-ground initial guess";
+    return guess;
+  }
   if (!solved) {
     guess.reason =
         "no flat-ground trajectory of this polynomial form reaches the goal from "
@@ -190,6 +199,10 @@ InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
   options.hessian_step = 1e-6;
   options.max_iterations = 30;
   options.criteria = {1e-5, 1e-5, 1e-4};
+  if (deadline) {
+    options.time_limit_s = std::max(
+        0.0, std::chrono::duration<double>(*deadline - std::chrono::steady_clock::now()).count());
+  }
   NewtonStart start{q, guess.lambda, Eigen::MatrixXd()};
   const SolveResult optimum = solveNewton(model, start, options, "flat");
   guess.integrations = model.integrations();

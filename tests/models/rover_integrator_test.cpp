@@ -302,6 +302,30 @@ TEST(RoverIntegrator, SamplesAtRequestedTimes) {
   }
 }
 
+// The fixed-step schemes honour the deadline too (every 64 steps): the flat-ground guess
+// integrates iterates whose final time runs to hours at 0.1 s steps.
+TEST(RoverIntegrator, FixedStepStopsAtItsDeadline) {
+  const ElevationMap map = generated(terrain::TerrainKind::kHills);
+  const TerrainSurface surface(map, Interpolation::kBicubic);
+  const PointAttitudeModel model(surface);
+  const RoverKinematics kinematics(model);
+  const PolynomialControls controls({0.0}, {0.1});  // standing still, turning: stays on the map
+  IntegratorOptions options;
+  options.method = IntegrationMethod::kRk4;
+  options.step = 0.1;
+  options.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  IntegrationResult result;
+  RoverIntegrator past(kinematics, options);
+  past.integrate({8.0, 18.0, 0.0}, controls, 1e6, {}, result);
+  EXPECT_EQ(result.status, IntegrationStatus::kSolverFailure);
+  EXPECT_NE(result.message.find("time limit"), std::string::npos) << result.message;
+  EXPECT_LT(result.steps, 128);
+  options.deadline = std::chrono::steady_clock::now() + std::chrono::hours(1);
+  RoverIntegrator later(kinematics, options);
+  later.integrate({8.0, 18.0, 0.0}, controls, 5.0, {}, result);
+  EXPECT_EQ(result.status, IntegrationStatus::kOk) << result.message;
+}
+
 // A deadline stops a CVODES integration with the reason; a later one lets it finish.
 TEST(RoverIntegrator, StopsAtItsDeadline) {
   const ElevationMap map = generated(terrain::TerrainKind::kHills);

@@ -347,6 +347,19 @@ TEST_F(NlpSolvers, InvalidStartsFailCleanly) {
   EXPECT_EQ(solveCeres(model, wrong_size, CeresOptions{}).status, SolveStatus::kError);
 }
 
+// The flat-ground guess honours a deadline (its iterates may integrate hours of final time):
+// past it, no guess and the reason says why; solveBoundaryValue then ends at its time limit.
+TEST_F(NlpSolvers, TheFlatGuessStopsAtItsDeadline) {
+  const BoundaryValueProblem problem = fanProblem(8, 0);
+  const InitialGuess late = flatInitialGuess(
+      problem, *surface_, std::chrono::steady_clock::now() - std::chrono::seconds(1));
+  EXPECT_FALSE(late.ok);
+  EXPECT_NE(late.reason.find("time limit"), std::string::npos) << late.reason;
+  EXPECT_TRUE(
+      flatInitialGuess(problem, *surface_, std::chrono::steady_clock::now() + std::chrono::hours(1))
+          .ok);
+}
+
 TEST_F(NlpSolvers, IterationLimitsAreReported) {
   const BoundaryValueProblem problem = fanProblem(8, 0);
   const Eigen::VectorXd q0 = heuristicGuess(problem);

@@ -42,9 +42,10 @@ struct IntegratorOptions {
   double relative_tolerance = 1e-8;   ///< CVODES, > 0
   double absolute_tolerance = 1e-10;  ///< CVODES [m, rad], > 0
   long max_steps = 1000000;           ///< CVODES internal steps per call, > 0
-  /// CVODES: wall clock by which an integration stops (kSolverFailure, "time limit"), checked
-  /// every 64 internal steps; absent: none. A solve's time limit, so that one stiff
-  /// integration (up to max_steps steps: seconds) cannot run past it.
+  /// Wall clock by which an integration stops (kSolverFailure, "time limit"), checked every 64
+  /// steps (CVODES's internal steps, or the fixed steps); absent: none. A solve's time limit,
+  /// so that one stiff or very long integration (up to max_steps steps, or a final time of
+  /// hours at a fixed step: seconds) cannot run past it.
   std::optional<std::chrono::steady_clock::time_point> deadline;
   bool sensitivities = false;  ///< also integrate d state / d q
   /// CVODES: include the sensitivities in the local error test. Off by default: the steps

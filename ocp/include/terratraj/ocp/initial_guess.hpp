@@ -5,6 +5,8 @@
 // flat optimum's Hessian of the Lagrangian (for BFGS's first W).
 
 #include <Eigen/Core>
+#include <chrono>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,16 +31,23 @@ struct InitialGuess {
 /// cruise at 0.7 v_max.
 Eigen::VectorXd heuristicGuess(const BoundaryValueProblem& problem);
 
+/// The wall clock by which an initial guess must end (none: no limit).
+using GuessDeadline = std::optional<std::chrono::steady_clock::time_point>;
+
 /// The flat-ground initial guess. `surface` only stands behind the flat model (never sampled).
-/// Never throws.
+/// Past `deadline` no further integration is made and the guess fails (ok false, the reason
+/// says the time limit ended it): an iterate with a huge final time costs seconds an
+/// integration (a 13 m turn's word took 43 s before this limit). Never throws.
 InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
-                              const terrain::TerrainSurface& surface);
+                              const terrain::TerrainSurface& surface,
+                              const GuessDeadline& deadline = std::nullopt);
 
 /// The same from `start_q` (unknowns of problem's ParametricControls layout, e.g. fitted to a
 /// global seed by fitParametricControls) instead of the heuristic.
 InitialGuess flatInitialGuess(const BoundaryValueProblem& problem,
                               const terrain::TerrainSurface& surface,
-                              const Eigen::VectorXd& start_q);
+                              const Eigen::VectorXd& start_q,
+                              const GuessDeadline& deadline = std::nullopt);
 
 /// The unknowns q whose polynomial controls best follow `t`, `v`, `omega` (least squares over
 /// the samples, t from 0 to the final time), with t_f such that the path length is
