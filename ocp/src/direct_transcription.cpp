@@ -41,6 +41,7 @@ class IpoptTranscription final : public Ipopt::TNLP {
         started_(started),
         history_(history),
         stall_(options.stall),
+        divergence_(options.divergence),
         // A later solve of a call (mesh round, retry) times its first step from now.
         previous_elapsed_(secondsSince(started)) {}
 
@@ -208,6 +209,11 @@ class IpoptTranscription final : public Ipopt::TNLP {
         stalled_ = true;  // cycling at a kink of the terrain, at a feasible iterate
         return false;
       }
+      last_inf_pr_ = inf_pr;
+      if (mode == Ipopt::RegularMode && divergence_.diverged(inf_du)) {
+        diverged_ = true;  // blown up: its factorisations slow to seconds
+        return false;
+      }
       if (options_.time_limit_s) {
         // Stop when the next iteration (as long as the last one) would end past the limit.
         const double elapsed = secondsSince(started_);
@@ -237,6 +243,8 @@ class IpoptTranscription final : public Ipopt::TNLP {
   bool finalized() const { return finalized_; }
   bool timedOut() const { return timed_out_; }
   bool stalled() const { return stalled_; }
+  bool diverged() const { return diverged_; }
+  double lastConstraintViolation() const { return last_inf_pr_; }
   int iterations() const { return last_iteration_; }
   const Eigen::VectorXd& finalX() const { return final_x_; }
   const Eigen::VectorXd& finalLambda() const { return final_lambda_; }
@@ -249,8 +257,10 @@ class IpoptTranscription final : public Ipopt::TNLP {
   Clock::time_point started_;
   std::vector<IterationRecord>& history_;
   IterationStall stall_;
+  IterationDivergence divergence_;
+  double last_inf_pr_ = 0.0;
   Eigen::VectorXd final_x_, final_lambda_;
-  bool finalized_ = false, timed_out_ = false, stalled_ = false;
+  bool finalized_ = false, timed_out_ = false, stalled_ = false, diverged_ = false;
   int last_iteration_ = 0;
   double previous_elapsed_ = 0.0;  // [s] at the previous iteration
 };
@@ -279,6 +289,7 @@ struct SingleSolve {
   Eigen::VectorXd x, lambda;
   int iterations = 0;
   bool time_limit_reached = false;
+  bool blew_up = false;  ///< stopped by options.divergence
 };
 
 SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem,
@@ -337,6 +348,17 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
     outcome = {SolveStatus::kConverged, ""};
     out.ipopt_status += " (stalled at a feasible, nearly stationary point: accepted)";
   }
+  if (status == Ipopt::User_Requested_Stop && adapter->diverged() && !adapter->timedOut()) {
+    // Multipliers diverging while the constraint violation stays: Ipopt heading for a point
+    // of local infeasibility, which its restoration phase would take long to prove.
+    std::ostringstream why;
+    why << "locally infeasible: Ipopt's dual infeasibility stayed above "
+        << options.divergence.dual_infeasibility << " for " << options.divergence.window
+        << " iterations (diverging multipliers) with the constraint violation at "
+        << adapter->lastConstraintViolation();
+    outcome = {SolveStatus::kInfeasible, why.str()};
+    out.blew_up = true;
+  }
   out.status = outcome.status;
   out.reason = std::move(outcome.reason);
   out.time_limit_reached = out.status != SolveStatus::kConverged &&
@@ -347,16 +369,18 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
   return out;
 }
 
-// Whether a solve with the default exact Hessian on the Segway ended locally infeasible or at
-// its iteration limit with half its time limit left (`elapsed_s` spent): then L-BFGS is tried
-// once. Later, a retry would take the time of the caller's other seeds (docs/benchmarks.md).
+// Whether a solve with the default exact Hessian on the Segway ended locally infeasible, blown
+// up (options.divergence) or at its iteration limit with half its time limit left (`elapsed_s`
+// spent): then L-BFGS is tried once. Later, a retry would take the time of the caller's other seeds
+// (docs/benchmarks.md).
 bool retriesWithLimitedMemory(const TranscriptionNlp& nlp,
                               const DirectTranscriptionOptions& options, const SingleSolve& solve,
                               double elapsed_s) {
   return !options.hessian && nlp.model().options().segway &&
          defaultHessian(nlp) == TranscriptionHessian::kExact && !solve.time_limit_reached &&
          (!options.time_limit_s || elapsed_s < 0.5 * *options.time_limit_s) &&
-         (solve.status == SolveStatus::kInfeasible || solve.status == SolveStatus::kMaxIterations);
+         (solve.status == SolveStatus::kInfeasible || solve.status == SolveStatus::kMaxIterations ||
+          solve.blew_up);
 }
 
 void fillSolution(TranscriptionNlp& nlp, const SingleSolve& solve, TranscriptionSolution& out) {
@@ -448,6 +472,9 @@ std::optional<std::string> validateTranscriptionOptions(const DirectTranscriptio
   if (!(o.model.control_effort_weight >= 0.0)) return "control_effort_weight must be >= 0";
   if (o.model.clearance.map != nullptr && !std::isfinite(o.model.clearance.min_clearance)) {
     return "min_clearance must be finite";
+  }
+  if (o.divergence.window < 0 || !(o.divergence.dual_infeasibility > 0.0)) {
+    return "divergence needs window >= 0 and dual_infeasibility > 0";
   }
   return std::nullopt;
 }

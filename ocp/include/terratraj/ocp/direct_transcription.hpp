@@ -12,6 +12,7 @@
 
 #include "terratraj/models/terrain_following_model.hpp"
 #include "terratraj/ocp/boundary_value_problem.hpp"
+#include "terratraj/ocp/iteration_divergence.hpp"
 #include "terratraj/ocp/iteration_stall.hpp"
 #include "terratraj/ocp/solve_result.hpp"
 #include "terratraj/ocp/transcription_guess.hpp"
@@ -86,6 +87,10 @@ struct DirectTranscriptionOptions {
   /// A solve cycling at a feasible, nearly stationary point (a kink of the terrain) stops
   /// there as converged (Ipopt status "User_Requested_Stop (stalled ...)"); window 0: never.
   StallAcceptance stall;
+  /// A solve whose dual infeasibility stays above a threshold (1e10) for `window` (20)
+  /// iterations in a row has blown up (diverging multipliers): it stops as kInfeasible, the
+  /// reason says so (iteration_divergence.hpp); window 0: never.
+  DivergenceStop divergence;
   TranscriptionBarrier barrier = TranscriptionBarrier::kAdaptive;
   double warm_mu_init = 1e-6;  ///< kWarm's first barrier parameter (scaled), > 0
   MeshRefinementOptions refinement;

@@ -1,0 +1,27 @@
+// IterationDivergence: when a blown-up interior-point solve stops.
+#include "terratraj/ocp/iteration_divergence.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+namespace terratraj::ocp {
+namespace {
+
+TEST(IterationDivergence, StopsAfterWindowIterationsInARowAboveTheThreshold) {
+  IterationDivergence watch({3, 1e10});
+  EXPECT_FALSE(watch.diverged(1e11));
+  EXPECT_FALSE(watch.diverged(1e12));
+  EXPECT_FALSE(watch.diverged(1e9));  // back below: the run starts again
+  EXPECT_FALSE(watch.diverged(1e11));
+  EXPECT_FALSE(watch.diverged(std::numeric_limits<double>::quiet_NaN()));
+  EXPECT_TRUE(watch.diverged(1e13));
+}
+
+TEST(IterationDivergence, AWindowOfZeroNeverStops) {
+  IterationDivergence watch({0, 1e10});
+  for (int i = 0; i < 100; ++i) EXPECT_FALSE(watch.diverged(1e20));
+}
+
+}  // namespace
+}  // namespace terratraj::ocp
