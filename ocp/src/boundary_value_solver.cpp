@@ -156,6 +156,10 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
   // The solver aims inside the criteria, so that the re-simulation (tighter integration) and
   // the CSV's rounding cannot push a converged end over the verdict's tolerance.
   BoundaryValueOptions solver_options = options;
+  // The solver gets what the guess left of the time limit.
+  if (options.time_limit_s) {
+    solver_options.time_limit_s = std::max(0.0, *options.time_limit_s - 1e-3 * elapsed_ms());
+  }
   solver_options.criteria.position_m *= 0.5;
   solver_options.criteria.heading_rad *= 0.5;
   solution.path_points = options.method == BoundaryValueMethod::kIpopt ? options.path_points : 0;

@@ -289,7 +289,6 @@ struct SingleSolve {
   Eigen::VectorXd x, lambda;
   int iterations = 0;
   bool time_limit_reached = false;
-  bool blew_up = false;  ///< stopped by options.divergence
 };
 
 SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem,
@@ -348,7 +347,7 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
     outcome = {SolveStatus::kConverged, ""};
     out.ipopt_status += " (stalled at a feasible, nearly stationary point: accepted)";
   }
-  if (status == Ipopt::User_Requested_Stop && adapter->diverged() && !adapter->timedOut()) {
+  if (status == Ipopt::User_Requested_Stop && adapter->diverged()) {
     // Multipliers diverging while the constraint violation stays: Ipopt heading for a point
     // of local infeasibility, which its restoration phase would take long to prove.
     std::ostringstream why;
@@ -357,7 +356,6 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
         << " iterations (diverging multipliers) with the constraint violation at "
         << adapter->lastConstraintViolation();
     outcome = {SolveStatus::kInfeasible, why.str()};
-    out.blew_up = true;
   }
   out.status = outcome.status;
   out.reason = std::move(outcome.reason);
@@ -369,18 +367,17 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
   return out;
 }
 
-// Whether a solve with the default exact Hessian on the Segway ended locally infeasible, blown
-// up (options.divergence) or at its iteration limit with half its time limit left (`elapsed_s`
-// spent): then L-BFGS is tried once. Later, a retry would take the time of the caller's other seeds
-// (docs/benchmarks.md).
+// Whether a solve with the default exact Hessian on the Segway ended locally infeasible (blown
+// up by options.divergence included) or at its iteration limit with half its time limit left
+// (`elapsed_s` spent): then L-BFGS is tried once. Later, a retry would take the time of the
+// caller's other seeds (docs/benchmarks.md).
 bool retriesWithLimitedMemory(const TranscriptionNlp& nlp,
                               const DirectTranscriptionOptions& options, const SingleSolve& solve,
                               double elapsed_s) {
   return !options.hessian && nlp.model().options().segway &&
          defaultHessian(nlp) == TranscriptionHessian::kExact && !solve.time_limit_reached &&
          (!options.time_limit_s || elapsed_s < 0.5 * *options.time_limit_s) &&
-         (solve.status == SolveStatus::kInfeasible || solve.status == SolveStatus::kMaxIterations ||
-          solve.blew_up);
+         (solve.status == SolveStatus::kInfeasible || solve.status == SolveStatus::kMaxIterations);
 }
 
 void fillSolution(TranscriptionNlp& nlp, const SingleSolve& solve, TranscriptionSolution& out) {

@@ -302,21 +302,14 @@ TEST(RoverIntegrator, SamplesAtRequestedTimes) {
   }
 }
 
-// The fixed-step schemes honour the deadline too (every 64 steps): the flat-ground guess
-// integrates iterates whose final time runs to hours at 0.1 s steps.
-TEST(RoverIntegrator, FixedStepStopsAtItsDeadline) {
-  const ElevationMap map = generated(terrain::TerrainKind::kHills);
-  const TerrainSurface surface(map, Interpolation::kBicubic);
-  const PointAttitudeModel model(surface);
-  const RoverKinematics kinematics(model);
-  const PolynomialControls controls({0.0}, {0.1});  // standing still, turning: stays on the map
-  IntegratorOptions options;
-  options.method = IntegrationMethod::kRk4;
-  options.step = 0.1;
+// A deadline already past stops an integration of `duration` [s] with the reason, within 128
+// steps; one an hour away lets a 5 s integration finish.
+void expectStopsAtItsDeadline(const RoverKinematics& kinematics, IntegratorOptions options,
+                              const PolynomialControls& controls, double duration) {
   options.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
   IntegrationResult result;
   RoverIntegrator past(kinematics, options);
-  past.integrate({8.0, 18.0, 0.0}, controls, 1e6, {}, result);
+  past.integrate({8.0, 18.0, 0.0}, controls, duration, {}, result);
   EXPECT_EQ(result.status, IntegrationStatus::kSolverFailure);
   EXPECT_NE(result.message.find("time limit"), std::string::npos) << result.message;
   EXPECT_LT(result.steps, 128);
@@ -326,24 +319,17 @@ TEST(RoverIntegrator, FixedStepStopsAtItsDeadline) {
   EXPECT_EQ(result.status, IntegrationStatus::kOk) << result.message;
 }
 
-// A deadline stops a CVODES integration with the reason; a later one lets it finish.
+// CVODES and the fixed-step schemes honour the deadline (every 64 steps): the flat-ground
+// guess integrates iterates whose final time runs to hours at 0.1 s steps.
 TEST(RoverIntegrator, StopsAtItsDeadline) {
   const ElevationMap map = generated(terrain::TerrainKind::kHills);
   const TerrainSurface surface(map, Interpolation::kBicubic);
   const PointAttitudeModel model(surface);
   const RoverKinematics kinematics(model);
-  const PolynomialControls controls({0.8}, {0.1});
-  IntegratorOptions options = cvodes(1e-10);
-  options.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
-  IntegrationResult result;
-  RoverIntegrator past(kinematics, options);
-  past.integrate({8.0, 18.0, 0.0}, controls, 5.0, {}, result);
-  EXPECT_EQ(result.status, IntegrationStatus::kSolverFailure);
-  EXPECT_NE(result.message.find("time limit"), std::string::npos) << result.message;
-  options.deadline = std::chrono::steady_clock::now() + std::chrono::hours(1);
-  RoverIntegrator later(kinematics, options);
-  later.integrate({8.0, 18.0, 0.0}, controls, 5.0, {}, result);
-  EXPECT_EQ(result.status, IntegrationStatus::kOk) << result.message;
+  expectStopsAtItsDeadline(kinematics, cvodes(1e-10), PolynomialControls({0.8}, {0.1}), 5.0);
+  // Standing still, turning: on the map for as long as it integrates.
+  expectStopsAtItsDeadline(kinematics, fixedStep(IntegrationMethod::kRk4, 0.1),
+                           PolynomialControls({0.0}, {0.1}), 1e6);
 }
 
 TEST(RoverIntegrator, FailuresAreStatusesWithReasons) {

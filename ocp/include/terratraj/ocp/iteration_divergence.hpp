@@ -31,8 +31,6 @@ class IterationDivergence {
     return run_ >= stop_.window;
   }
 
-  const DivergenceStop& stop() const { return stop_; }
-
  private:
   DivergenceStop stop_;
   int run_ = 0;  ///< iterations in a row above the threshold
