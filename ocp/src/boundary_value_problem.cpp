@@ -1,10 +1,26 @@
 #include "terratraj/ocp/boundary_value_problem.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace terratraj::ocp {
 
 bool standsStill(const VehicleState& state) { return std::abs(state.v) <= kRestSpeed; }
+
+double SpeedTables::speedCap(const models::Attitude& attitude, double curvature,
+                             double v_max) const {
+  double cap = v_max;
+  if (pitch != nullptr) cap = std::min(cap, pitch->lookup(attitude.pitch));
+  if (roll_curvature != nullptr)
+    cap = std::min(cap, roll_curvature->lookup(attitude.roll, curvature));
+  if (segway != nullptr) cap = std::min(cap, segway->bounds.speedLimit(attitude.pitch));
+  return std::max(cap, 0.0);
+}
+
+double SpeedTables::accelerationCap(const models::Attitude& attitude, double a_max) const {
+  if (segway == nullptr) return a_max;
+  return std::clamp(segway->bounds.accelerationLimit(attitude.pitch), 0.0, a_max);
+}
 
 double wrapAngle(double angle) {
   constexpr double kPi = 3.14159265358979323846;

@@ -20,6 +20,34 @@ void differentiateControls(TranscriptionGuess& guess) {
   }
 }
 
+// The speed tables' bounds along the path (SpeedTables::speedCap at the vehicle's attitude on
+// each sample, with the same 0.8 margin as the limits), and the Segway's acceleration bound by
+// slope. Where a table forbids driving (cap 0: the Segway beyond its drivable slope), the guess
+// keeps a tenth of the limits rather than stopping mid-path: the optimiser has to leave such a
+// path anyway, and a guess at rest there would leave it no direction.
+void capByTables(const std::vector<Eigen::Vector2d>& xy, const std::vector<double>& heading,
+                 const std::vector<double>& curvature, const BoundaryValueProblem& problem,
+                 const models::TerrainFollowingModel& vehicle, std::vector<double>& v,
+                 std::vector<double>& accel) {
+  const SpeedTables& tables = problem.tables;
+  if (tables.pitch == nullptr && tables.roll_curvature == nullptr && tables.segway == nullptr) {
+    return;
+  }
+  const models::VehicleLimits& l = problem.limits;
+  models::AttitudeWorkspace workspace;
+  models::AttitudeResult placed;
+  for (std::size_t i = 0; i < xy.size(); ++i) {
+    if (vehicle.compute({xy[i].x(), xy[i].y(), heading[i]}, workspace, placed) !=
+        models::AttitudeStatus::kOk) {
+      continue;
+    }
+    const double cap = tables.speedCap(placed.attitude, curvature[i], l.v_max);
+    v[i] = std::min(v[i], std::max(0.8 * cap, 0.1 * l.v_max));
+    accel[i] = std::min(
+        accel[i], std::max(0.8 * tables.accelerationCap(placed.attitude, l.a_max), 0.1 * l.a_max));
+  }
+}
+
 }  // namespace
 
 PointVector TranscriptionGuess::at(double time) const {
@@ -79,7 +107,8 @@ Expected<TranscriptionGuess> guessFromTrajectory(const models::Trajectory& traje
 }
 
 Expected<TranscriptionGuess> guessFromPath(const std::vector<Eigen::Vector2d>& path,
-                                           const BoundaryValueProblem& problem, double spacing) {
+                                           const BoundaryValueProblem& problem, double spacing,
+                                           const models::TerrainFollowingModel* vehicle) {
   // Distinct, finite points and their arc length.
   std::vector<Eigen::Vector2d> points;
   std::vector<double> arc;
@@ -128,13 +157,19 @@ Expected<TranscriptionGuess> guessFromPath(const std::vector<Eigen::Vector2d>& p
     const double k = std::abs(curvature[i]);
     if (k > 1e-9) v[i] = std::min(v[i], 0.8 * l.omega_max / k);
   }
+  const double a = 0.8 * l.a_max;
+  std::vector<double> accel(n, a);
+  if (vehicle != nullptr) capByTables(xy, heading, curvature, problem, *vehicle, v, accel);
   v.front() = std::clamp(problem.start.v, 0.0, l.v_max);
   v.back() = std::clamp(problem.goal.v, 0.0, l.v_max);
-  const double a = 0.8 * l.a_max;
-  for (std::size_t i = 1; i < n; ++i)
-    v[i] = std::min(v[i], std::sqrt(v[i - 1] * v[i - 1] + 2.0 * a * ds));
-  for (std::size_t i = n - 1; i-- > 0;)
-    v[i] = std::min(v[i], std::sqrt(v[i + 1] * v[i + 1] + 2.0 * a * ds));
+  for (std::size_t i = 1; i < n; ++i) {
+    const double step = std::min(accel[i - 1], accel[i]);
+    v[i] = std::min(v[i], std::sqrt(v[i - 1] * v[i - 1] + 2.0 * step * ds));
+  }
+  for (std::size_t i = n - 1; i-- > 0;) {
+    const double step = std::min(accel[i], accel[i + 1]);
+    v[i] = std::min(v[i], std::sqrt(v[i + 1] * v[i + 1] + 2.0 * step * ds));
+  }
   TranscriptionGuess guess;
   double t = 0.0;
   for (std::size_t i = 0; i < n; ++i) {

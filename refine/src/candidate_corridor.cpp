@@ -69,7 +69,10 @@ std::vector<Eigen::Vector2d> CandidateRefiner::shortcutPath(
   // no data the surface is undefined farther out than the no-data cells themselves on a coarse
   // map, and a straight cut across a slope the candidate went round leaves the optimiser an
   // infeasible start it may not recover from (moon DEM: a 57 m PRM route, shortcut across the
-  // slopes, refined to a 368 m wander).
+  // slopes, refined to a 368 m wander). Likewise where the speed tables leave less than a tenth
+  // of v_max (the Segway's look-ups forbid slopes beyond 20 deg along the heading, within its
+  // pitch limit: on davosdorf a PRM route cut straight across them started the Segway's
+  // collocation 2 m/s beyond its slope bound, and it wandered for 1,000 iterations).
   const models::VehicleLimits& limits = problem_->limits;
   const auto clear = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
@@ -84,7 +87,8 @@ std::vector<Eigen::Vector2d> CandidateRefiner::shortcutPath(
       if (problem_->vehicle->compute({p.x(), p.y(), heading}, workspace, placed) !=
               models::AttitudeStatus::kOk ||
           std::abs(placed.attitude.pitch) > limits.pitch_max ||
-          std::abs(placed.attitude.roll) > limits.roll_max) {
+          std::abs(placed.attitude.roll) > limits.roll_max ||
+          bvp_->tables.speedCap(placed.attitude, 0.0, limits.v_max) < 0.1 * limits.v_max) {
         return false;
       }
     }

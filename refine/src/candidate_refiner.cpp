@@ -349,9 +349,9 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
 
   // 1. Complete the candidate and measure it.
   Expected<ocp::TranscriptionGuess> guess =
-      hasTiming(candidate)
-          ? ocp::guessFromTrajectory(candidate)
-          : ocp::guessFromPath(polyline(candidate), *bvp_, options_.guess_spacing_m);
+      hasTiming(candidate) ? ocp::guessFromTrajectory(candidate)
+                           : ocp::guessFromPath(polyline(candidate), *bvp_,
+                                                options_.guess_spacing_m, problem_->vehicle);
   if (!guess) return finish(ocp::SolveStatus::kError, "the candidate: " + guess.reason());
   for (std::size_t c = 0; c < models::kTrajectoryColumnCount; ++c) {
     if (!candidate.has_column[c]) {
@@ -429,7 +429,7 @@ ocp::TranscriptionGuess CandidateRefiner::startingGuess(const TrajectoryFigures&
     const double length = polylineLength(shortcut);
     if (length < options_.shortcut_gain * before.length_m && classOf(shortcut) == before.homotopy) {
       if (Expected<ocp::TranscriptionGuess> shorter =
-              ocp::guessFromPath(shortcut, *bvp_, options_.guess_spacing_m)) {
+              ocp::guessFromPath(shortcut, *bvp_, options_.guess_spacing_m, problem_->vehicle)) {
         guess = std::move(*shorter);
         out.guess_shortcut_m = before.length_m - length;
       }
@@ -441,8 +441,8 @@ ocp::TranscriptionGuess CandidateRefiner::startingGuess(const TrajectoryFigures&
   // PRM's own samples change speed at every milestone). Forest PRM first solutions: 54-142 ->
   // 19-68 coarse iterations, the same optima (bench refine).
   if (out.guess_shortcut_m == 0.0 && !(guess.finalTime() <= nearOptimalTime(before.length_m))) {
-    if (Expected<ocp::TranscriptionGuess> retimed =
-            ocp::guessFromPath(polyline(out.candidate), *bvp_, options_.guess_spacing_m)) {
+    if (Expected<ocp::TranscriptionGuess> retimed = ocp::guessFromPath(
+            polyline(out.candidate), *bvp_, options_.guess_spacing_m, problem_->vehicle)) {
       if (retimed->finalTime() < guess.finalTime()) {
         out.guess_retimed_s = guess.finalTime() - retimed->finalTime();
         guess = std::move(*retimed);

@@ -386,32 +386,49 @@ class AttemptLog {
   bool any_candidate_ = false;
 };
 
+// Which steps of a word's chain ended on their own (not by the clock): the solvers are
+// deterministic, so a later round skips them rather than spend its budget on the same result
+// (a collocation that stopped at its iteration cap within the budget, 5-8 s on davosdorf).
+struct ChainProgress {
+  bool solved = false;         ///< the method's attempt from the word
+  bool ipopt_ended = false;    ///< auto's bridge: the parametric ipopt from the word
+  std::optional<Seed> bridge;  ///< its verified trajectory as a seed, when it gave one
+  bool bridged = false;        ///< the whole bridge (ipopt, then collocation from it)
+};
+
 // auto, when collocation fails from a word: the parametric ipopt (few unknowns, free speed, the
 // limits held) from the same word, and collocation again from its trajectory, which follows the
 // terrain within the limits; within `within`. ipopt's verified result is a candidate too (its
 // verdict checks every limit, the Segway's look-ups included), unless a clearance is asked for,
 // which only the transcriptions hold. Returns whether the bridge ended on its own (neither step
-// stopped by the clock): run again, it would end the same.
+// stopped by the clock): run again, it would end the same. An ipopt step that ended on its own
+// is not run again when a later round repeats the bridge (`done`): only the collocation the
+// clock stopped is.
 bool bridgeThroughIpopt(const models::TerrainFollowingModel& vehicle,
                         const ocp::BoundaryValueProblem& problem, const terrain::ElevationMap* map,
                         const SeededSolveOptions& options, const Seed& seed,
-                        const ocp::Deadline& within, AttemptLog& log) {
-  const bool clearance = options.transcription.transcription.model.clearance.map != nullptr;
-  SeededSolveOptions parametric = options;
-  parametric.method = CoreMethod::kIpopt;
-  const Clock::time_point t0 = Clock::now();
-  SeededSolution step = attempt(vehicle, problem, map, parametric, &seed, within.left());
-  const bool timed_out = step.time_limit_reached;
-  std::optional<ocp::TranscriptionGuess> guess;
-  if (step.verified.ok) guess = guessOrNothing(step.verified.trajectory);
-  const double length = step.verified.length;
-  log.record(std::move(step), t0, !clearance);
-  if (timed_out) return false;
-  if (!guess) return true;
+                        const ocp::Deadline& within, ChainProgress& done, AttemptLog& log) {
+  if (!done.ipopt_ended) {
+    const bool clearance = options.transcription.transcription.model.clearance.map != nullptr;
+    SeededSolveOptions parametric = options;
+    parametric.method = CoreMethod::kIpopt;
+    const Clock::time_point t0 = Clock::now();
+    SeededSolution step = attempt(vehicle, problem, map, parametric, &seed, within.left());
+    const bool timed_out = step.time_limit_reached;
+    if (step.verified.ok) {
+      if (std::optional<ocp::TranscriptionGuess> guess = guessOrNothing(step.verified.trajectory)) {
+        done.bridge =
+            Seed{"ipopt from " + seed.name, step.verified.length, std::move(*guess), seed.turning};
+      }
+    }
+    log.record(std::move(step), t0, !clearance);
+    if (timed_out) return false;
+    done.ipopt_ended = true;
+  }
+  if (!done.bridge) return true;
   if (within.over()) return false;
-  const Seed bridged{"ipopt from " + seed.name, length, std::move(*guess), seed.turning};
   const Clock::time_point t1 = Clock::now();
-  SeededSolution polished = attempt(vehicle, problem, map, options, &bridged, within.left());
+  SeededSolution polished = attempt(vehicle, problem, map, options, &*done.bridge, within.left());
   const bool ended = !polished.time_limit_reached;
   log.record(std::move(polished), t1);
   return ended;
@@ -464,13 +481,7 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
   // the likeliest: it gets first_seed_time_s, the others seed_time_s; doubled each round.
   const Seed* const first = order.empty() ? nullptr : order.front();
   const double first_budget = firstSeedBudget(options);
-  // Which steps of each word's chain ended on their own (not by the clock): the solvers are
-  // deterministic, so a later round skips them rather than spend its budget on the same result
-  // (a collocation that stopped at its iteration cap within the budget, 5-8 s on davosdorf).
-  struct ChainProgress {
-    bool solved = false;   ///< the method's attempt from the word
-    bool bridged = false;  ///< auto's bridge through ipopt
-  };
+  // Which steps of each word's chain ended on their own (ChainProgress).
   std::map<const Seed*, ChainProgress> progress;
   // One seed's chain within its budget; whether the budget cut it: no convergence gained, a
   // step of a word's chain stopped by the clock or not reached (the search seed: at least
@@ -500,7 +511,7 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
       }
       if (options.method == CoreMethod::kAuto && !log.converged() && !done.bridged) {
         done.bridged = !within.over() &&
-                       bridgeThroughIpopt(vehicle, problem, map, options, *seed, within, log);
+                       bridgeThroughIpopt(vehicle, problem, map, options, *seed, within, done, log);
         unfinished = !done.bridged;
       }
       unfinished = unfinished || !done.solved;

@@ -11,6 +11,7 @@
 #include "../search/lattice_fixtures.hpp"
 #include "../search/search_fixtures.hpp"
 #include "../terrain/test_maps.hpp"
+#include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/refine/candidate_refiner.hpp"
 #include "terratraj/search/kinodynamic_prm.hpp"
 #include "terratraj/search/trajectory_checker.hpp"
@@ -234,6 +235,30 @@ TEST(CandidateRefiner, TheShortcutDoesNotCrossSlopesBeyondTheLimits) {
       refiner.refine(xyPath({{3.0, 4.0}, {10.0, 14.0}, {14.0, 14.0}, {21.0, 4.0}}));
   EXPECT_LT(r.guess_shortcut_m, 3.0);
   expectSound(r, world->problem, frames);
+}
+
+// ... and the ground the speed tables forbid: a ridge of 23 deg flanks, within the pitch limit
+// (0.45 rad), is cut straight across without tables, but not for the Segway, whose look-ups
+// allow no speed beyond 20 deg (on davosdorf such a cut started its collocation 2 m/s beyond
+// the slope bound, and it wandered). Only the guess is asserted: the Segway's solve is cut at
+// 5 s.
+TEST(CandidateRefiner, TheShortcutKeepsOffGroundTheSpeedTablesForbid) {
+  terrain::ElevationMap map = testing::flatMap(64, 96);  // 24 m x 16 m
+  terrain::testing::raiseRidge(map, 12.0, 0.7, 1.0, 10.5, 2.0);
+  auto world = testing::worldOn(std::move(map), {3.0, 4.0}, {21.0, 4.0});
+  const ReferenceFrames frames = framesOf(*world);
+  const models::Trajectory candidate =
+      xyPath({{3.0, 4.0}, {10.0, 14.0}, {14.0, 14.0}, {21.0, 4.0}});
+  ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  const RefinementResult without = CandidateRefiner(world->problem, bvp, frames).refine(candidate);
+  EXPECT_GT(without.guess_shortcut_m, 3.0);
+  const models::SegwayLookups segway = models::defaultSegwayLookups();
+  bvp.tables.segway = &segway;
+  RefinementOptions options;
+  options.time_limit_s = 5.0;
+  const RefinementResult with =
+      CandidateRefiner(world->problem, bvp, frames, options).refine(candidate);
+  EXPECT_LT(with.guess_shortcut_m, 3.0);
 }
 
 // A candidate that drives its path about as fast as the limits allow (here a refined

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "terratraj/models/attitude.hpp"
 #include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/models/vehicle_limits.hpp"
 #include "terratraj/models/velocity_table.hpp"
@@ -57,6 +58,14 @@ struct SpeedTables {
   /// pitch): every verdict checks them (models::TrajectoryRequirements::segway). The
   /// transcriptions hold them as constraints through TranscriptionModelOptions::segway.
   const models::SegwayLookups* segway = nullptr;
+
+  /// The tightest speed bound [m/s] of the tables at this attitude [rad] (pitch: the slope along
+  /// the heading) and curvature [1/m], or `v_max` when no table bounds it lower. 0 where a table
+  /// forbids driving (the Segway beyond its drivable slope).
+  double speedCap(const models::Attitude& attitude, double curvature, double v_max) const;
+  /// The tightest acceleration bound [m/s^2] at this attitude: the Segway's by slope, else
+  /// `a_max`.
+  double accelerationCap(const models::Attitude& attitude, double a_max) const;
 };
 
 /// One boundary-value problem.

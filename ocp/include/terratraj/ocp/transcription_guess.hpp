@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "terratraj/models/terrain_following_model.hpp"
 #include "terratraj/models/trajectory.hpp"
 #include "terratraj/ocp/boundary_value_problem.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
@@ -35,11 +36,15 @@ Expected<TranscriptionGuess> guessFromTrajectory(const models::Trajectory& traje
 /// A guess from a geometric path (x, y points, at least 2 distinct): resampled every `spacing`
 /// m of arc length, heading from the tangent (start and goal headings at the ends), speeds
 /// from a forward-backward pass under v_max, a_max and omega_max / |curvature|, starting and
-/// ending at the problem's speeds; times from the speeds. A failure with the reason for a path
-/// with fewer than two distinct points or non-finite values.
+/// ending at the problem's speeds; times from the speeds. With `vehicle` (the terrain-following
+/// model the problem is solved with), also under the problem's speed tables at the vehicle's
+/// attitude on each sample (SpeedTables::speedCap, the Segway's acceleration bound by slope);
+/// where a table forbids driving, a tenth of v_max and a_max. A failure with the reason for a
+/// path with fewer than two distinct points or non-finite values.
 Expected<TranscriptionGuess> guessFromPath(const std::vector<Eigen::Vector2d>& path,
                                            const BoundaryValueProblem& problem,
-                                           double spacing = 0.25);
+                                           double spacing = 0.25,
+                                           const models::TerrainFollowingModel* vehicle = nullptr);
 
 /// The guess for a user's or a planner's trajectory: from its timing when it has t and v,
 /// else from its x, y alone (guessFromPath).
