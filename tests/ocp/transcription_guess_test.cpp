@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../terrain/test_maps.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/terrain/terrain_surface.hpp"
@@ -18,17 +19,7 @@ constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 // A plane rising along x at `slope` [rad] over 40 m x 10 m at 0.25 m.
 terrain::ElevationMap rampMap(double slope) {
-  terrain::GridGeometry geometry;
-  geometry.rows = 40;
-  geometry.cols = 160;
-  geometry.cell = 0.25;
-  terrain::ElevationMap map(geometry);
-  for (int r = 0; r < geometry.rows; ++r) {
-    for (int c = 0; c < geometry.cols; ++c) {
-      map.elevation()(r, c) = static_cast<float>(std::tan(slope) * (c + 0.5) * geometry.cell);
-    }
-  }
-  return map;
+  return terrain::testing::planeMap(40, 160, 0.25, std::tan(slope), 0.0, 0.0);
 }
 
 // The Segway's problem: rest to rest 30 m up the ramp (heading 0), its paper's limits.
