@@ -54,6 +54,8 @@ nlohmann::json refineReportJson(const refine::RefinementResult& r,
       {"coarse",
        {{"intervals", r.coarse_intervals},
         {"iterations", r.coarse_iterations},
+        {"limit_excess", r.coarse_limit_excess},
+        {"used", r.coarse_used},
         {"status", r.coarse_intervals > 0 ? nlohmann::json(ocp::solveStatusName(r.coarse_status))
                                           : nlohmann::json(nullptr)}}},
       {"margins",

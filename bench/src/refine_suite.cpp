@@ -80,6 +80,7 @@ nlohmann::json refineOne(const bench::BenchmarkWorld& w, const refine::Candidate
   out["intervals"] = r.intervals;
   out["coarse_intervals"] = r.coarse_intervals;
   out["coarse_iterations"] = r.coarse_iterations;
+  out["coarse_used"] = r.coarse_used;
   out["guess_shortcut_m"] = r.guess_shortcut_m;
   out["guess_retimed_s"] = r.guess_retimed_s;
   out["barrier"] = r.warm_start ? "warm" : "adaptive";

@@ -2,6 +2,7 @@
 
 // Ipopt's headers need HAVE_CSTDDEF (set for this target in ocp/CMakeLists.txt).
 #include <coin/IpIpoptApplication.hpp>
+#include <coin/IpIpoptCalculatedQuantities.hpp>
 #include <coin/IpTNLP.hpp>
 
 #include <algorithm>
@@ -195,21 +196,29 @@ class IpoptTranscription final : public Ipopt::TNLP {
                              Ipopt::Number inf_pr, Ipopt::Number inf_du, Ipopt::Number mu,
                              Ipopt::Number, Ipopt::Number, Ipopt::Number, Ipopt::Number alpha_pr,
                              Ipopt::Index, const Ipopt::IpoptData*,
-                             Ipopt::IpoptCalculatedQuantities*) override {
+                             Ipopt::IpoptCalculatedQuantities* quantities) override {
     return detail::guardedCallback([&] {
+      // Ipopt 3.11 passes its internal primal infeasibility: scaled, and with the slacks of the
+      // inequality rows (d(x) - s), which stays large on a cycle at a kink while every row
+      // holds. The stall test and the history want the original rows' violation, unscaled (the
+      // quantity constr_viol_tol bounds; cached by Ipopt's own convergence test).
+      const double violation =
+          mode == Ipopt::RegularMode && quantities != nullptr
+              ? quantities->unscaled_curr_nlp_constraint_violation(Ipopt::NORM_MAX)
+              : inf_pr;
       IterationRecord record;
       record.iteration = static_cast<int>(history_.size());
-      record.terminal_error = inf_pr;  // the defects: terminal states are bounds
+      record.terminal_error = violation;  // the defects: terminal states are bounds
       record.cost = obj_value;
       record.lagrangian_gradient = inf_du;
       record.step = alpha_pr;
       history_.push_back(record);
       last_iteration_ = iter;
-      if (mode == Ipopt::RegularMode && stall_.accept(obj_value, inf_pr, inf_du, mu)) {
+      if (mode == Ipopt::RegularMode && stall_.accept(obj_value, violation, inf_du, mu)) {
         stalled_ = true;  // cycling at a kink of the terrain, at a feasible iterate
         return false;
       }
-      last_inf_pr_ = inf_pr;
+      last_inf_pr_ = violation;
       if (mode == Ipopt::RegularMode && divergence_.diverged(inf_du)) {
         diverged_ = true;  // blown up: its factorisations slow to seconds
         return false;

@@ -59,6 +59,28 @@ PointVector TranscriptionGuess::at(double time) const {
   return (1.0 - f) * points[i - 1] + f * points[i];
 }
 
+double guessLimitExcess(const TranscriptionGuess& guess, const BoundaryValueProblem& problem,
+                        const models::TerrainFollowingModel& vehicle, int samples) {
+  if (guess.t.empty() || samples < 2) return 0.0;
+  const models::VehicleLimits& l = problem.limits;
+  models::AttitudeWorkspace workspace;
+  models::AttitudeResult placed;
+  double excess = 0.0;
+  for (int i = 0; i < samples; ++i) {
+    const PointVector w = guess.at(guess.finalTime() * i / (samples - 1));
+    if (vehicle.compute({w(0), w(1), w(2)}, workspace, placed) != models::AttitudeStatus::kOk) {
+      excess = std::max(excess, 1.0);
+      continue;
+    }
+    const models::Attitude& a = placed.attitude;
+    const double curvature = std::abs(w(3)) > 1e-9 ? w(4) / w(3) : 0.0;
+    excess = std::max({excess, std::abs(a.pitch) / l.pitch_max - 1.0,
+                       std::abs(a.roll) / l.roll_max - 1.0,
+                       (w(3) - problem.tables.speedCap(a, curvature, l.v_max)) / l.v_max});
+  }
+  return excess;
+}
+
 Expected<TranscriptionGuess> guessFromTrajectory(const models::Trajectory& trajectory) {
   for (TrajectoryColumn c : {TrajectoryColumn::kT, TrajectoryColumn::kX, TrajectoryColumn::kY,
                              TrajectoryColumn::kHeading, TrajectoryColumn::kV}) {

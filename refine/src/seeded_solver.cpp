@@ -8,15 +8,19 @@
 #include <sstream>
 #include <utility>
 
+#include "attempt_log.hpp"
 #include "terratraj/ocp/deadline.hpp"
 #include "terratraj/ocp/dubins_path.hpp"
 #include "terratraj/ocp/initial_guess.hpp"
 #include "terratraj/ocp/start_at_goal.hpp"
 #include "terratraj/ocp/transcription_guess.hpp"
 #include "terratraj/refine/search_seed.hpp"
+#include "terratraj/search/bang_bang_bound.hpp"
 
 namespace terratraj::refine {
 namespace {
+
+using detail::AttemptLog;
 
 constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
@@ -140,15 +144,6 @@ ocp::BoundaryValueMethod parametricMethod(CoreMethod method) {
 bool isTranscription(CoreMethod method) {
   return method == CoreMethod::kAuto || method == CoreMethod::kShooting ||
          method == CoreMethod::kCollocation;
-}
-
-// Keeps the better of the best so far and a new result: converged first, then the lower cost.
-bool better(const SeededSolution& candidate, const SeededSolution& best) {
-  const bool c = candidate.status == ocp::SolveStatus::kConverged;
-  const bool b = best.status == ocp::SolveStatus::kConverged;
-  if (c != b) return c;
-  if (!best.verified.ok) return candidate.verified.ok;
-  return candidate.verified.ok && candidate.verified.cost < best.verified.cost;
 }
 
 }  // namespace
@@ -339,53 +334,6 @@ SeededSolution attemptFlat(const models::TerrainFollowingModel& vehicle,
   return attempt(vehicle, problem, map, options, &seed, deadline.left());
 }
 
-// The attempts of one solveSeeded() and the best of them so far.
-class AttemptLog {
- public:
-  AttemptLog(CoreMethod method, std::function<void(const SeedAttempt&)> on_attempt)
-      : on_attempt_(std::move(on_attempt)) {
-    best_.method = coreMethodName(method);
-    best_.reason = "no attempt was made";
-  }
-
-  // Adds `result`, started at `attempt_started`, and tells `on_attempt`; `candidate` false:
-  // listed among the attempts, never the result (a bridge's first step when a clearance is
-  // asked for).
-  void record(SeededSolution result, Clock::time_point attempt_started, bool candidate = true) {
-    SeedAttempt a;
-    a.seed = result.initial_guess;
-    a.method = result.method;
-    a.status = result.status;
-    a.reason = result.reason;
-    a.cost = result.verified.ok ? result.verified.cost : std::numeric_limits<double>::quiet_NaN();
-    a.time_ms = 1e3 * secondsSince(attempt_started);
-    a.budget_s = budget_s;
-    a.round = round;
-    a.time_limit_reached = result.time_limit_reached;
-    const int iterations = best_.iterations + result.iterations;
-    const bool first_candidate = !any_candidate_;
-    any_candidate_ = any_candidate_ || candidate;
-    std::vector<SeedAttempt> attempts = std::move(best_.attempts);
-    attempts.push_back(a);
-    if (candidate && (first_candidate || better(result, best_))) best_ = std::move(result);
-    best_.attempts = std::move(attempts);
-    best_.iterations = iterations;
-    if (on_attempt_) on_attempt_(a);
-  }
-
-  bool converged() const { return best_.status == ocp::SolveStatus::kConverged; }
-  bool empty() const { return best_.attempts.empty(); }
-  SeededSolution& best() { return best_; }
-
-  double budget_s = std::numeric_limits<double>::infinity();  ///< of the seed being tried [s]
-  int round = 0;                                              ///< of the seed being tried
-
- private:
-  std::function<void(const SeedAttempt&)> on_attempt_;
-  SeededSolution best_;
-  bool any_candidate_ = false;
-};
-
 // Which steps of a word's chain ended on their own (not by the clock): the solvers are
 // deterministic, so a later round skips them rather than spend its budget on the same result
 // (a collocation that stopped at its iteration cap within the budget, 5-8 s on davosdorf).
@@ -470,11 +418,16 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
   }
   // Every seed until one converges; after that, in the first round only, a further word within
   // the attitude limits no longer than retry_length_ratio x the shortest (its optimum on the
-  // terrain may be better).
+  // terrain may be better), or any word when the best cost is above retry_cost_ratio x the
+  // word's bang-bang time (a search seed's detour).
   const auto wanted = [&](const Seed* seed) {
     if (log.empty() || !log.converged()) return true;
-    return log.round == 0 && seed != nullptr && !seed->beyond_limits &&
-           seed->length <= options.retry_length_ratio * shortest;
+    if (log.round != 0 || seed == nullptr) return false;
+    if (!seed->beyond_limits && seed->length <= options.retry_length_ratio * shortest) return true;
+    const double word_time =
+        search::bangBangTime(seed->length, problem.start.v, problem.goal.v, problem.goal.v,
+                             problem.limits.v_max, problem.limits.a_max);
+    return log.best().verified.cost > options.retry_cost_ratio * word_time;
   };
   const bool budgeted = options.seed_time_s > 0.0 && std::isfinite(options.seed_time_s);
   // The first seed in the order (the shortest word within the limits, else the search seed) is

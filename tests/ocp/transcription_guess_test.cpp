@@ -106,5 +106,33 @@ TEST(TranscriptionGuess, WithoutTablesTheVehicleChangesNothing) {
   }
 }
 
+// A guess read at its own two points sees flat ground; read at a fine mesh's points it crosses a
+// ridge steeper than pitch_max and the Segway's drivable slope between them (as a coarse mesh's
+// solution can): guessLimitExcess says by how much. Within every limit, it is 0.
+TEST(TranscriptionGuess, TheLimitExcessSeesGroundBetweenThePoints) {
+  terrain::ElevationMap map = terrain::testing::planeMap(40, 160, 0.25, 0.0, 0.0, 0.0);
+  terrain::testing::raiseRidge(map, 19.0, 1.0, 0.5, 100.0, 1.0);  // flanks near 50 deg
+  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const models::PointAttitudeModel vehicle(surface);
+  const models::SegwayLookups lookups = models::defaultSegwayLookups();
+  const BoundaryValueProblem problem = segwayUpTheRamp(lookups);
+  TranscriptionGuess straight;
+  straight.t = {0.0, 30.0};
+  straight.points.assign(2, PointVector::Zero());
+  straight.points[0] << 4.0, 5.0, 0.0, 1.0, 0.0, 0.0, 0.0;
+  straight.points[1] << 34.0, 5.0, 0.0, 1.0, 0.0, 0.0, 0.0;
+
+  EXPECT_LE(guessLimitExcess(straight, problem, vehicle, 2), 0.0);
+  const double excess = guessLimitExcess(straight, problem, vehicle, 241);
+  EXPECT_GT(excess, 0.4);  // |pitch| about 1.5 x pitch_max on the flanks
+  EXPECT_LT(excess, 1.0);
+
+  // On the flat map alone, at 1 m/s: every limit holds at every point.
+  const terrain::ElevationMap flat = terrain::testing::planeMap(40, 160, 0.25, 0.0, 0.0, 0.0);
+  const terrain::TerrainSurface flat_surface(flat, terrain::Interpolation::kBicubic);
+  const models::PointAttitudeModel flat_vehicle(flat_surface);
+  EXPECT_LE(guessLimitExcess(straight, problem, flat_vehicle, 241), 0.0);
+}
+
 }  // namespace
 }  // namespace terratraj::ocp

@@ -278,6 +278,8 @@ TEST(CandidateRefiner, ANearOptimalCandidateStartsTheBarrierWarm) {
   expectSound(first, world->problem, frames);
   EXPECT_GT(first.coarse_intervals, 0);
   EXPECT_EQ(first.coarse_status, ocp::SolveStatus::kConverged);
+  EXPECT_TRUE(first.coarse_used);  // flat ground: nothing between its points it did not see
+  EXPECT_LE(first.coarse_limit_excess, 0.0);
   EXPECT_TRUE(first.warm_start);
   const models::Trajectory& candidate = first.verified.trajectory;
   const RefinementResult warm = CandidateRefiner(world->problem, bvp, frames).refine(candidate);

@@ -344,6 +344,37 @@ TEST_F(SeededSolverTest, WordsAcrossSlopesBeyondTheLimitsComeAfterTheSearchSeed)
   EXPECT_GT(north, 18.0);
 }
 
+// The search seed's refinement keeps the PRM route's class: here round the ridge's end, more
+// than 1.5x the time a word across it could take. After it converged the word is tried too
+// (retry_cost_ratio), and the better verified result kept; with the ratio out of reach, the
+// search seed's result alone.
+TEST_F(SeededSolverTest, ASearchSeedsDetourStillTriesTheWords) {
+  terrain::testing::raiseRidge(map_, 15.0, 2.0, 1.0, 18.0, 2.0);  // 50 deg flanks
+  ocp::BoundaryValueProblem problem;
+  problem.start = {8.0, 8.0, 0.0, 0.0, 0.0};
+  problem.goal = {22.0, 8.0, 0.0, 0.0, 0.0};
+  problem.limits = sets::roverLimits();
+  SeededSolveOptions options;
+  options.time_limit_s = 60.0;
+  options.max_words = 1;
+  options.seed_time_s = 0.5;  // the word's chain: it crosses the ridge and cannot converge
+  const SeededSolution tried = solveSeeded(vehicle_, problem, &map_, options);
+  ASSERT_EQ(tried.status, ocp::SolveStatus::kConverged) << tried.reason;
+  ASSERT_GE(tried.attempts.size(), 2u);
+  EXPECT_NE(tried.attempts.front().seed.find("search"), std::string::npos);
+  EXPECT_EQ(tried.attempts.front().status, ocp::SolveStatus::kConverged);
+  EXPECT_NE(tried.attempts[1].seed.find("dubins"), std::string::npos) << tried.attempts[1].seed;
+  EXPECT_EQ(tried.attempts[1].round, 0);
+  const double word_time = 14.0 / problem.limits.v_max;  // the straight word, at least
+  EXPECT_GT(tried.verified.cost, options.retry_cost_ratio * word_time);  // hence the retry
+
+  options.retry_cost_ratio = 1e9;
+  const SeededSolution alone = solveSeeded(vehicle_, problem, &map_, options);
+  ASSERT_EQ(alone.status, ocp::SolveStatus::kConverged) << alone.reason;
+  ASSERT_EQ(alone.attempts.size(), 1u);
+  EXPECT_NEAR(alone.verified.cost, tried.verified.cost, 1e-9);  // the word did not beat it
+}
+
 // A Segway on a slope its look-ups allow no speed on (22 deg along its heading; they end at
 // 20 deg) can never leave the start: unreachable, with the reason, before any seed. The same
 // start at 15 deg is solved, and the result holds the look-ups (the verdict checks them).

@@ -46,6 +46,15 @@ Expected<TranscriptionGuess> guessFromPath(const std::vector<Eigen::Vector2d>& p
                                            double spacing = 0.25,
                                            const models::TerrainFollowingModel* vehicle = nullptr);
 
+/// How far `guess` breaks the limits that depend on the ground, at `samples` (>= 2) instants
+/// evenly spaced in time (linear interpolation, as a transcription mesh of that many points
+/// reads it): the largest of |pitch| / pitch_max - 1, |roll| / roll_max - 1 and the speed over
+/// the problem's speed tables at the vehicle's attitude (SpeedTables::speedCap), relative to
+/// v_max; 0 when every sample holds them. A sample where the vehicle cannot be placed counts 1.
+/// Tells whether a coarse mesh's solution skipped ground its points never touched.
+double guessLimitExcess(const TranscriptionGuess& guess, const BoundaryValueProblem& problem,
+                        const models::TerrainFollowingModel& vehicle, int samples);
+
 /// The guess for a user's or a planner's trajectory: from its timing when it has t and v,
 /// else from its x, y alone (guessFromPath).
 Expected<TranscriptionGuess> guessFromCandidate(const models::Trajectory& candidate,

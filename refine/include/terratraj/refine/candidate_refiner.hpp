@@ -82,6 +82,11 @@ struct RefinementResult {
   /// a slow candidate whose shortcut is not used [s] (0: not used).
   double guess_retimed_s = 0.0;
   ocp::SolveStatus coarse_status = ocp::SolveStatus::kError;  ///< the coarse solve's outcome
+  /// How far the coarse solution breaks the ground's limits read at the fine mesh's points
+  /// (ocp::guessLimitExcess, relative); the fine solve starts from it only when that is at
+  /// most mesh_excess or the guess's own.
+  double coarse_limit_excess = 0.0;
+  bool coarse_used = false;  ///< the fine solve started from the coarse solution
   /// The fine solve started Ipopt's barrier warm (RefinementOptions::warm_start_time_ratio).
   bool warm_start = false;
   int margin_rounds = 0;           ///< fine direct transcription solves (1 + margin retries used)
@@ -155,6 +160,15 @@ class CandidateRefiner {
   void transcribe(const ocp::TranscriptionGuess& guess, const TrajectoryFigures& before,
                   const terrain::ClearanceMap& clearance, const Deadline& deadline,
                   RefinementResult& out) const;
+  // The coarse mesh's solve from `guess` (coarse_intervals, the fine options otherwise, the
+  // speed margin applied): its solution when it converged and breaks the ground's limits at the
+  // fine mesh's points by at most `mesh_excess` or the guess's own excess, else std::nullopt;
+  // fills out's coarse figures, history and iterations.
+  std::optional<ocp::TranscriptionGuess> solveCoarse(const ocp::TranscriptionGuess& guess,
+                                                     const ocp::DirectTranscriptionOptions& fine,
+                                                     double mesh_excess, int coarse_intervals,
+                                                     const Deadline& deadline,
+                                                     RefinementResult& out) const;
   // The candidate's cost plus its last point's distance to the exact goal at v_max: what a
   // refinement must not exceed.
   double candidateCostAtGoal(const TrajectoryFigures& before, const RefinementResult& out) const;

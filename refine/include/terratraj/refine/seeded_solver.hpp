@@ -18,7 +18,8 @@
 // verified result counts too, unless a clearance is asked for: only the transcriptions hold
 // it). Every attempt is verified (the verdict, the Segway's look-ups included);
 // the best converged cost wins; a second word is tried when the first fails or is within
-// `retry_length_ratio` of it. Each seed runs within a budget (`first_seed_time_s` for the
+// `retry_length_ratio` of it, or when the best cost so far is above `retry_cost_ratio` x the
+// word's bang-bang time. Each seed runs within a budget (`first_seed_time_s` for the
 // first, `seed_time_s` for the others); the seeds cut by theirs (a step stopped by the clock)
 // are retried, in the same order, with twice the budget, round after round, repeating only the
 // steps the clock stopped (a portfolio: a seed on which the solver wanders costs its budget,
@@ -101,6 +102,12 @@ struct SeededSolveOptions {
   /// A further word is tried when the previous attempt failed, or when its Dubins length is at
   /// most this ratio times the shortest's (its optimum on the terrain may be better), >= 1.
   double retry_length_ratio = 1.2;
+  /// After a convergence, in the first round, a further word is also tried (even one beyond
+  /// the attitude limits) when the best verified cost is above this ratio x the word's
+  /// bang-bang time along its length (v_max, a_max, the end speeds): the search seed's
+  /// refinement keeps the PRM's class, which can be a detour far slower than a word (davosdorf
+  /// Segway, 47.1 s against a word's 16.3 s), >= 1.
+  double retry_cost_ratio = 1.5;
   /// ipopt (which holds v_max and a_max): the speed polynomial's order at least this, so the
   /// speed is free to rise to v_max and return to the end speeds (rest to rest works), >= 1.
   /// newton and ceres hold no limit and keep the problem's order (a free speed would be
