@@ -63,6 +63,17 @@ class SeededSolverTest : public ::testing::Test {
     return solveSeeded(vehicle_, problem, &map_, options);
   }
 
+  // Raises on the map a ridge along x = 15 m (50 deg flanks) ending at y = 18 m, and returns
+  // the problem from (8, 8) to (22, 8) across it, rest to rest, the rover's limits.
+  ocp::BoundaryValueProblem acrossARidge() {
+    terrain::testing::raiseRidge(map_, 15.0, 2.0, 1.0, 18.0, 2.0);
+    ocp::BoundaryValueProblem problem;
+    problem.start = {8.0, 8.0, 0.0, 0.0, 0.0};
+    problem.goal = {22.0, 8.0, 0.0, 0.0, 0.0};
+    problem.limits = sets::roverLimits();
+    return problem;
+  }
+
   terrain::ElevationMap map_;
   terrain::TerrainSurface surface_;
   models::PointAttitudeModel vehicle_;
@@ -313,11 +324,7 @@ TEST_F(SeededSolverTest, NoDataBesideTheWordsLeavesItToTheSearchSeed) {
 // not converged, versus 1.1 s from the search seed). The attitude along the result is
 // re-computed here, row by row.
 TEST_F(SeededSolverTest, WordsAcrossSlopesBeyondTheLimitsComeAfterTheSearchSeed) {
-  terrain::testing::raiseRidge(map_, 15.0, 2.0, 1.0, 18.0, 2.0);  // 50 deg flanks
-  ocp::BoundaryValueProblem problem;
-  problem.start = {8.0, 8.0, 0.0, 0.0, 0.0};
-  problem.goal = {22.0, 8.0, 0.0, 0.0, 0.0};
-  problem.limits = sets::roverLimits();
+  const ocp::BoundaryValueProblem problem = acrossARidge();
   const SeededSolution s = solve(problem, CoreMethod::kAuto);
   ASSERT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
   ASSERT_FALSE(s.attempts.empty());
@@ -349,11 +356,7 @@ TEST_F(SeededSolverTest, WordsAcrossSlopesBeyondTheLimitsComeAfterTheSearchSeed)
 // (retry_cost_ratio), and the better verified result kept; with the ratio out of reach, the
 // search seed's result alone.
 TEST_F(SeededSolverTest, ASearchSeedsDetourStillTriesTheWords) {
-  terrain::testing::raiseRidge(map_, 15.0, 2.0, 1.0, 18.0, 2.0);  // 50 deg flanks
-  ocp::BoundaryValueProblem problem;
-  problem.start = {8.0, 8.0, 0.0, 0.0, 0.0};
-  problem.goal = {22.0, 8.0, 0.0, 0.0, 0.0};
-  problem.limits = sets::roverLimits();
+  const ocp::BoundaryValueProblem problem = acrossARidge();
   SeededSolveOptions options;
   options.time_limit_s = 60.0;
   options.max_words = 1;
