@@ -457,6 +457,15 @@ TranscriptionGuess TranscriptionSolution::asGuess() const {
 std::optional<std::string> validateTranscriptionOptions(const DirectTranscriptionOptions& o) {
   if (o.intervals < 1) return "intervals must be >= 1";
   if (o.intervals > 100000) return "intervals must be <= 100000";
+  if (!o.mesh.empty()) {
+    if (static_cast<int>(o.mesh.size()) != o.intervals + 1) {
+      return "mesh must have intervals + 1 (" + std::to_string(o.intervals + 1) + ") node times";
+    }
+    if (o.mesh.front() != 0.0 || o.mesh.back() != 1.0) return "mesh must run from 0 to 1";
+    for (std::size_t k = 0; k + 1 < o.mesh.size(); ++k) {
+      if (!(o.mesh[k + 1] > o.mesh[k])) return "mesh node times must increase strictly";
+    }
+  }
   if (!(o.min_final_time > 0.0) || !(o.max_final_time > o.min_final_time)) {
     return "final-time bounds must satisfy 0 < min_final_time < max_final_time";
   }
@@ -556,7 +565,7 @@ TranscriptionSolution solveDirectTranscription(const models::TerrainFollowingMod
     layout.shooting_controls = options.shooting_controls;
     layout.linear_controls = options.linear_controls;
     layout.rest_curvature = options.rest_curvature;
-    layout.mesh = uniformMesh(options.intervals);
+    layout.mesh = options.mesh.empty() ? uniformMesh(options.intervals) : options.mesh;
     // A twentieth of a cell: see TranscriptionLayout::hessian_position_step.
     layout.hessian_position_step = 0.05 * vehicle.surface().map().geometry().cell;
     // The iteration records are appended inside Ipopt's callback: no allocation there.

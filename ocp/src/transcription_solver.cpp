@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "terratraj/ocp/deadline.hpp"
+#include "terratraj/ocp/mesh_split.hpp"
 #include "terratraj/ocp/solution_verdict.hpp"
 #include "terratraj/ocp/start_at_goal.hpp"
 #include "terratraj/ocp/transcription_model.hpp"
@@ -59,6 +60,57 @@ std::pair<double, double> relativeExcess(const models::CheckReport& check) {
 
 bool clipsMap(const models::CheckReport& check) {
   return check.find("lethal") != nullptr || check.find("no_data") != nullptr;
+}
+
+// The next round's mesh, from this round's verification (mesh_split.hpp): the intervals where
+// the re-simulation breaks a ground limit by more than a quarter of the worst interval's excess
+// (and the check's 1e-3), with their two neighbours (the re-solve shifts the trajectory along
+// the mesh), and, when it misses the goal, those whose local integration error is above the
+// terminal tolerance over the number of intervals (so that the others add up to less than it)
+// are halved; every interval when neither finds one (a limit the ground does not set: the
+// overshoot shrinks with every interval) or where more than half would be.
+void refineMesh(const TranscriptionModel& model, const BoundaryValueProblem& problem,
+                const TranscriptionSolveOptions& options, const VerifiedTranscription& out,
+                DirectTranscriptionOptions& transcription) {
+  const std::vector<double>& mesh = out.solution.mesh;
+  const int intervals = static_cast<int>(mesh.size()) - 1;
+  std::vector<bool> split(static_cast<std::size_t>(std::max(intervals, 0)), false);
+  int chosen = 0;
+  if (out.verified.ok && intervals > 0) {
+    std::vector<double> node_times(mesh.size());
+    for (std::size_t k = 0; k < mesh.size(); ++k) {
+      node_times[k] = mesh[k] * out.solution.final_time;
+    }
+    const std::vector<double> excess =
+        intervalLimitExcess(out.verified.trajectory, node_times, problem);
+    const double worst = *std::max_element(excess.begin(), excess.end());
+    constexpr double kCheckRelative = 1e-3;  // the verdict's relative slack
+    for (int k = 0; k < intervals; ++k) {
+      const double e = excess[static_cast<std::size_t>(k)];
+      if (!(e > kCheckRelative && e >= 0.25 * worst)) continue;
+      // With its neighbours: the re-solve shifts the trajectory along the mesh.
+      for (int j = std::max(k - 1, 0); j <= std::min(k + 1, intervals - 1); ++j) {
+        split[static_cast<std::size_t>(j)] = true;
+      }
+    }
+    if (out.verdict.misses_goal) {
+      if (const std::optional<std::vector<double>> errors = intervalErrors(model, out.solution)) {
+        const double tolerance =
+            std::min(options.criteria.position_m, options.criteria.heading_rad) / intervals;
+        for (int k = 0; k < intervals; ++k) {
+          if ((*errors)[static_cast<std::size_t>(k)] > tolerance) {
+            split[static_cast<std::size_t>(k)] = true;
+          }
+        }
+      }
+    }
+    chosen = static_cast<int>(std::count(split.begin(), split.end(), true));
+  }
+  if (chosen == 0 || 2 * chosen > intervals) {
+    std::fill(split.begin(), split.end(), true);  // every interval: a finer spot stays finer
+  }
+  transcription.mesh = splitIntervals(mesh, split, options.max_intervals);
+  transcription.intervals = static_cast<int>(transcription.mesh.size()) - 1;
 }
 
 }  // namespace
@@ -186,7 +238,7 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
   verification.clearance.min_clearance = 0.0;
   const TranscriptionModel model(vehicle, problem, verification);
   double speed_margin = options.speed_margin, limit_margin = options.limit_margin;
-  bool doubled = false, widened = false;
+  bool refined_again = false, widened = false;
   TranscriptionGuess start = guess;
   for (int round = 0; round <= options.max_rounds; ++round) {
     if (round > 0 && deadline.over()) {
@@ -222,29 +274,29 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
       transcription.rest_curvature = true;
       continue;
     }
-    const bool can_double = 2 * transcription.intervals <= options.max_intervals;
+    const bool can_refine = transcription.intervals < options.max_intervals;
     const auto [speed_excess, limit_excess] = relativeExcess(out.verdict.check);
     // A missed goal (with limits broken or not) or a limit broken far between the points is the
     // discretisation's error: more intervals, before margins that would cost that much time.
     const bool coarse =
         out.verdict.misses_goal || std::max(speed_excess, limit_excess) > options.mesh_excess;
-    if (coarse && can_double && !clipsMap(out.verdict.check)) {
-      transcription.intervals *= 2;
+    if (coarse && can_refine && !clipsMap(out.verdict.check)) {
+      refineMesh(model, problem, options, out, transcription);
     } else if (out.verdict.failure == models::VerdictFailure::kMissesGoal) {
       // The discretisation error: more intervals.
-      if (!can_double) {
+      if (!can_refine) {
         out.reason += ": the mesh is at its cap of " + std::to_string(options.max_intervals) +
                       " intervals (raise it)";
         break;
       }
-      transcription.intervals *= 2;
+      refineMesh(model, problem, options, out, transcription);
     } else if (clipsMap(out.verdict.check) && transcription.model.clearance.map != nullptr &&
                transcription.model.clearance.min_clearance < options.clearance_floor) {
       transcription.model.clearance.min_clearance = options.clearance_floor;
-    } else if (widened && !doubled && can_double) {
+    } else if (widened && !refined_again && can_refine) {
       // A limit still broken between the points: the overshoot shrinks with the interval.
-      transcription.intervals *= 2;
-      doubled = true;
+      refineMesh(model, problem, options, out, transcription);
+      refined_again = true;
     } else {
       // A limit broken between the points (the states are quadratic there): margins wider by
       // the measured excess, with room to spare (margins cost optimality, little).

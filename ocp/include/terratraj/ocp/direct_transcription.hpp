@@ -69,6 +69,10 @@ struct DirectTranscriptionOptions {
   /// overshoot of them there.
   bool interval_bounds = true;
   int intervals = 40;  ///< N, >= 1
+  /// The mesh's node times, normalised (0 = start, 1 = t_f; strictly increasing, intervals + 1
+  /// of them); empty: `intervals` equal intervals. solveTranscription's rounds set it when they
+  /// halve only the intervals their verification found too coarse (mesh_split.hpp).
+  std::vector<double> mesh;
   /// Unset: exact for collocation (with the Segway too: the model takes the C1 versions of its
   /// look-ups), limited-memory for shooting. With the Segway, a solve that ends locally
   /// infeasible or at max_iterations (not at the time limit) is tried once more with

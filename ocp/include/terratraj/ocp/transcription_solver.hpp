@@ -8,9 +8,10 @@
 // points by the discretisation error. So the problem is solved with the limits tightened by
 // small margins, and a solution whose re-simulation still breaks a limit between the points,
 // misses the goal beyond the tolerance, or clips a lethal cell is solved again from itself:
-// with more clearance (a clipped cell), twice the intervals (up to a cap), or wider margins,
-// until the verdict passes, the rounds run out or the time limit is reached. Every round is
-// reported.
+// with more clearance (a clipped cell), a finer mesh (up to a cap), or wider margins, until the
+// verdict passes, the rounds run out or the time limit is reached. A finer mesh halves the
+// intervals where the re-simulation breaks a ground limit or drifts (mesh_split.hpp), every
+// interval when that is most of them or none is found. Every round is reported.
 
 #include <atomic>
 #include <optional>
@@ -41,15 +42,15 @@ struct TranscriptionSolveOptions {
   double limit_margin = 0.002;
   int max_rounds = 4;  ///< re-solves after the first, >= 0
   /// A round whose re-simulation misses the goal, or breaks a limit between the points by more
-  /// than this fraction of it, is solved again at twice the intervals (while max_intervals
-  /// allows) rather than with wider margins, in (0, 0.5].
+  /// than this fraction of it, is solved again on a finer mesh (while max_intervals allows)
+  /// rather than with wider margins, in (0, 0.5].
   double mesh_excess = 0.05;
   /// The barrier strategy of the re-solves, which start from the previous round's solution
   /// (the first round uses transcription.barrier). kWarm saves iterations when the rounds only
   /// refine the mesh of a near-optimal solution (refinement of a planner candidate); from Dubins
   /// seeds on the real DEMs it stalled re-solves with widened margins (docs/benchmarks.md).
   TranscriptionBarrier resolve_barrier = TranscriptionBarrier::kAdaptive;
-  int max_intervals = 800;  ///< doubling stops here, >= transcription.intervals
+  int max_intervals = 800;  ///< mesh refinement stops here, >= transcription.intervals
   /// A re-simulation over a lethal cell raises the clearance constraint (when
   /// transcription.model.clearance has a map) to this [m], >= 0.
   double clearance_floor = 0.0;
