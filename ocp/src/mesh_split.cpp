@@ -5,6 +5,14 @@
 
 namespace terratraj::ocp {
 
+double groundLimitExcess(const BoundaryValueProblem& problem, const models::Attitude& attitude,
+                         double v, double curvature) {
+  const models::VehicleLimits& l = problem.limits;
+  return std::max({std::abs(attitude.pitch) / l.pitch_max - 1.0,
+                   std::abs(attitude.roll) / l.roll_max - 1.0,
+                   (v - problem.tables.speedCap(attitude, curvature, l.v_max)) / l.v_max});
+}
+
 std::vector<double> intervalLimitExcess(const models::Trajectory& trajectory,
                                         const std::vector<double>& mesh_times,
                                         const BoundaryValueProblem& problem) {
@@ -20,9 +28,7 @@ std::vector<double> intervalLimitExcess(const models::Trajectory& trajectory,
     while (k + 1 < intervals && t > mesh_times[static_cast<std::size_t>(k) + 1]) ++k;
     const models::Attitude attitude{s[i].z, s[i].roll, s[i].pitch};
     const double curvature = std::isfinite(s[i].curvature) ? s[i].curvature : 0.0;
-    double e =
-        std::max({std::abs(s[i].pitch) / l.pitch_max - 1.0, std::abs(s[i].roll) / l.roll_max - 1.0,
-                  (s[i].v - problem.tables.speedCap(attitude, curvature, l.v_max)) / l.v_max});
+    double e = groundLimitExcess(problem, attitude, s[i].v, curvature);
     if (i + 1 < s.size() && s[i + 1].t > s[i].t) {
       const models::Attitude next{s[i + 1].z, s[i + 1].roll, s[i + 1].pitch};
       const double cap = std::max(problem.tables.accelerationCap(attitude, l.a_max),

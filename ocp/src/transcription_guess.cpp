@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "terratraj/ocp/mesh_split.hpp"
+
 namespace terratraj::ocp {
 namespace {
 
@@ -62,7 +64,6 @@ PointVector TranscriptionGuess::at(double time) const {
 double guessLimitExcess(const TranscriptionGuess& guess, const BoundaryValueProblem& problem,
                         const models::TerrainFollowingModel& vehicle, int samples) {
   if (guess.t.empty() || samples < 2) return 0.0;
-  const models::VehicleLimits& l = problem.limits;
   models::AttitudeWorkspace workspace;
   models::AttitudeResult placed;
   double excess = 0.0;
@@ -72,11 +73,8 @@ double guessLimitExcess(const TranscriptionGuess& guess, const BoundaryValueProb
       excess = std::max(excess, 1.0);
       continue;
     }
-    const models::Attitude& a = placed.attitude;
     const double curvature = std::abs(w(3)) > 1e-9 ? w(4) / w(3) : 0.0;
-    excess = std::max({excess, std::abs(a.pitch) / l.pitch_max - 1.0,
-                       std::abs(a.roll) / l.roll_max - 1.0,
-                       (w(3) - problem.tables.speedCap(a, curvature, l.v_max)) / l.v_max});
+    excess = std::max(excess, groundLimitExcess(problem, placed.attitude, w(3), curvature));
   }
   return excess;
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "../terrain/test_maps.hpp"
+#include "segway_problems.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/terrain/terrain_surface.hpp"
@@ -24,14 +25,7 @@ terrain::ElevationMap rampMap(double slope) {
 
 // The Segway's problem: rest to rest 30 m up the ramp (heading 0), its paper's limits.
 BoundaryValueProblem segwayUpTheRamp(const models::SegwayLookups& lookups) {
-  BoundaryValueProblem problem;
-  problem.start = {4.0, 5.0, 0.0, 0.0, 0.0};
-  problem.goal = {34.0, 5.0, 0.0, 0.0, 0.0};
-  problem.limits.v_max = 3.5;
-  problem.limits.a_max = 2.0;
-  problem.limits.pitch_max = 30.0 * kDegree;
-  problem.tables.segway = &lookups;
-  return problem;
+  return testing::segwayAlongX(lookups, 34.0, 30.0 * kDegree);
 }
 
 double largestSpeed(const TranscriptionGuess& guess) {

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "../terrain/test_maps.hpp"
+#include "segway_problems.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/segway_lookups.hpp"
 #include "terratraj/terrain/terrain_surface.hpp"
@@ -37,13 +38,7 @@ TEST(TranscriptionSolver, ACoarseMeshIsRefinedWhereTheGroundBreaksALimit) {
   const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
   const models::PointAttitudeModel vehicle(surface);
   const models::SegwayLookups lookups = models::defaultSegwayLookups();
-  BoundaryValueProblem problem;
-  problem.start = {4.0, 5.0, 0.0, 0.0, 0.0};
-  problem.goal = {36.0, 5.0, 0.0, 0.0, 0.0};
-  problem.limits.v_max = 3.5;
-  problem.limits.a_max = 2.0;
-  problem.limits.pitch_max = 25.0 * kDegree;
-  problem.tables.segway = &lookups;
+  const BoundaryValueProblem problem = testing::segwayAlongX(lookups, 36.0, 25.0 * kDegree);
   const Expected<TranscriptionGuess> guess =
       guessFromPath({{4.0, 5.0}, {36.0, 5.0}}, problem, 0.25);  // blind to the step
   ASSERT_TRUE(guess.ok()) << guess.reason();

@@ -18,6 +18,13 @@
 
 namespace terratraj::ocp {
 
+/// How far one state breaks the ground's limits, relative: the largest of |pitch| / pitch_max
+/// - 1, |roll| / roll_max - 1 and the speed `v` [m/s] over the problem's speed tables at
+/// `attitude` and `curvature` [1/m] (SpeedTables::speedCap) relative to v_max; <= 0 when all
+/// hold. What guessLimitExcess and intervalLimitExcess read at each of their samples.
+double groundLimitExcess(const BoundaryValueProblem& problem, const models::Attitude& attitude,
+                         double v, double curvature);
+
 /// The largest relative excess of the ground's limits within each interval of `mesh_times`
 /// (node times [s], increasing, from the trajectory's first time), read from the samples of a
 /// re-simulated `trajectory` (their pitch and roll columns, the model's): |pitch| / pitch_max
