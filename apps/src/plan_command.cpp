@@ -67,10 +67,10 @@ namespace {
 
 // Writes every solution (each passed the verdict in the planner) and fills the report's info.
 void writeSolutions(const search::PlanResult& result, const std::filesystem::path& out_dir,
-                    PlanReportInfo& info) {
+                    const models::SegwayPitchResponse* platform, PlanReportInfo& info) {
   for (std::size_t k = 0; k < result.solutions.size(); ++k) {
     const std::filesystem::path file = out_dir / ("solution_" + std::to_string(k) + ".csv");
-    models::writeTrajectoryCsv(result.solutions[k].trajectory, file);
+    models::writeTrajectoryCsv(result.solutions[k].trajectory, file, platform);
     info.files.push_back(file);
     info.checks.push_back(result.solutions[k].check);
   }
@@ -246,7 +246,7 @@ RefinedCandidates refineCandidates(const ProblemSpec& problem, const ProblemScen
       file = options.out_dir / ("solution_" + std::to_string(k) + ".csv");
     } else if (r.verified.ok) {
       file = options.out_dir / ("refined_" + std::to_string(k) + ".csv");
-      models::writeTrajectoryCsv(r.verified.trajectory, *file);
+      models::writeTrajectoryCsv(r.verified.trajectory, *file, scene.platformPitchResponse());
     }
     context.log->info("solution {}: {} ({}, {} ms){}{}", k, ocp::solveStatusName(r.status),
                       refine::refineMethodName(r.method), r.solve_time_ms,
@@ -398,7 +398,7 @@ PlanRun executePlan(const ProblemSpec& problem, const PlanOptions& options,
     const PlannerSetup setup = setUpPlanner(problem, query, frames, info, context);
     result = setup.planner->solve(planTermination(problem, context));
   }
-  writeSolutions(result, options.out_dir, info);
+  writeSolutions(result, options.out_dir, scene.platformPitchResponse(), info);
 
   PlanRun run;
   run.report = planReportJson(result, info);

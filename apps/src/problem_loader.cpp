@@ -313,7 +313,10 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
   if (const std::optional<Field> tolerance = map.find("tolerance")) {
     parseTolerance(ctx, *tolerance, solver);
   }
-  solver.time_limit_s = map.optionalNumber("time_limit_s", Range::nonNegative());
+  if (const std::optional<double> limit =
+          map.optionalNumber("time_limit_s", Range::nonNegative())) {
+    solver.time_limit_s = limit;
+  }
   solver.seed_time_s = map.optionalNumber("seed_time_s", Range::positive());
   solver.first_seed_time_s = map.optionalNumber("first_seed_time_s", Range::positive());
   using ocp::TranscriptionScheme;

@@ -139,7 +139,7 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
   const models::Trajectory* returned = returnedTrajectory(result);
   std::optional<std::filesystem::path> written;
   if (options.out && returned != nullptr) {
-    models::writeTrajectoryCsv(*returned, *options.out);
+    models::writeTrajectoryCsv(*returned, *options.out, scene.platformPitchResponse());
     written = *options.out;
   }
   nlohmann::json report = refineReportJson(result, refine, options.candidate, written);
@@ -161,7 +161,7 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
     plot.tolerance_position_m = refine.parametric.criteria.position_m;
     const std::filesystem::path derived =
         options.plot->parent_path() / (options.plot->stem().string() + "-candidate.csv");
-    models::writeTrajectoryCsv(result.candidate, derived);
+    models::writeTrajectoryCsv(result.candidate, derived, scene.platformPitchResponse());
     plot.trajectories.push_back({"candidate", derived, true, 0});
     if (result.verified.ok) {
       // The refined trajectory: --out when it holds it, else a file beside the plot.
@@ -170,7 +170,8 @@ int runRefine(const RefineOptions& options, CommandContext& context) {
         refined = *written;
       } else {
         refined = options.plot->parent_path() / (options.plot->stem().string() + "-refined.csv");
-        models::writeTrajectoryCsv(result.verified.trajectory, refined);
+        models::writeTrajectoryCsv(result.verified.trajectory, refined,
+                                   scene.platformPitchResponse());
       }
       plot.trajectories.push_back({"refined", refined, false, 0});
     }

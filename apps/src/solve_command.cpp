@@ -137,7 +137,9 @@ nlohmann::json plotSolve(const SolveOptions& options, const ProblemSpec& problem
   if (verified.ok) {
     std::filesystem::path csv =
         options.out ? *options.out : png.parent_path() / (png.stem().string() + "-trajectory.csv");
-    if (!options.out) models::writeTrajectoryCsv(verified.trajectory, csv);
+    if (!options.out) {
+      models::writeTrajectoryCsv(verified.trajectory, csv, scene.platformPitchResponse());
+    }
     plot.trajectories.push_back({method, csv, false, 0});
   }
   plot.histories.push_back({method, history, 0});
@@ -166,6 +168,8 @@ nlohmann::json seededReportJson(const refine::SeededSolution& solution,
       {"time_limit_s",
        seeded.time_limit_s ? nlohmann::json(*seeded.time_limit_s) : nlohmann::json(nullptr)},
       {"solve_time_ms", solution.total_time_ms},
+      // The clock ended the solve (or its best attempt) before it finished: more time may help.
+      {"time_limit_reached", solution.time_limit_reached},
       {"seed_time_s", seeded.seed_time_s},
       {"first_seed_time_s", refine::firstSeedBudget(seeded)},
       {"tolerance",
@@ -299,7 +303,8 @@ int runSolve(const SolveOptions& options, CommandContext& context) {
     solution = refine::solveSeeded(vehicle, bvp, &map, seeded);
   }
   if (options.out && solution.verified.ok) {
-    models::writeTrajectoryCsv(solution.verified.trajectory, *options.out);
+    models::writeTrajectoryCsv(solution.verified.trajectory, *options.out,
+                               scene.platformPitchResponse());
   }
   nlohmann::json report = seededReportJson(solution, seeded, problem);
   if (options.plot) {

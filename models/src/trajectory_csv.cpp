@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -109,29 +110,58 @@ Trajectory readTrajectoryCsv(const std::filesystem::path& path) {
   return readTrajectoryCsv(in, path.string());
 }
 
-void writeTrajectoryCsv(const Trajectory& trajectory, std::ostream& out) {
+std::vector<double> platformPitchColumn(const Trajectory& trajectory,
+                                        const SegwayPitchResponse& platform) {
+  const std::vector<TrajectorySample>& samples = trajectory.samples;
+  std::vector<double> column(samples.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    double acceleration = 0.0;
+    if (samples.size() > 1) {
+      const std::size_t a = i + 1 < samples.size() ? i : i - 1;
+      acceleration = (samples[a + 1].v - samples[a].v) / (samples[a + 1].t - samples[a].t);
+    }
+    if (std::isfinite(acceleration) && std::isfinite(samples[i].pitch)) {
+      column[i] = platform.pitch(acceleration, samples[i].pitch);
+    }
+  }
+  return column;
+}
+
+void writeTrajectoryCsv(const Trajectory& trajectory, std::ostream& out,
+                        const SegwayPitchResponse* platform) {
+  const std::vector<double> platform_pitch =
+      platform != nullptr ? platformPitchColumn(trajectory, *platform) : std::vector<double>{};
+  const auto write = [&out](double value) {
+    if (std::isnan(value)) {
+      out << "nan";
+    } else {
+      out << value;
+    }
+  };
   for (std::size_t i = 0; i < kTrajectoryColumnCount; ++i) {
     out << (i ? "," : "") << trajectoryColumnName(static_cast<TrajectoryColumn>(i));
   }
+  if (platform != nullptr) out << ",platform_pitch";
   out << '\n' << std::setprecision(12);
-  for (const TrajectorySample& sample : trajectory.samples) {
+  for (std::size_t row = 0; row < trajectory.samples.size(); ++row) {
+    const TrajectorySample& sample = trajectory.samples[row];
     for (std::size_t i = 0; i < kTrajectoryColumnCount; ++i) {
-      const double value = sample.get(static_cast<TrajectoryColumn>(i));
       out << (i ? "," : "");
-      if (std::isnan(value)) {
-        out << "nan";
-      } else {
-        out << value;
-      }
+      write(sample.get(static_cast<TrajectoryColumn>(i)));
+    }
+    if (platform != nullptr) {
+      out << ',';
+      write(platform_pitch[row]);
     }
     out << '\n';
   }
 }
 
-void writeTrajectoryCsv(const Trajectory& trajectory, const std::filesystem::path& path) {
+void writeTrajectoryCsv(const Trajectory& trajectory, const std::filesystem::path& path,
+                        const SegwayPitchResponse* platform) {
   std::ofstream out(path);
   if (!out) throw InputError(path.string() + ": cannot be opened for writing");
-  writeTrajectoryCsv(trajectory, out);
+  writeTrajectoryCsv(trajectory, out, platform);
   out.flush();
   if (!out) throw InputError(path.string() + ": write error");
 }

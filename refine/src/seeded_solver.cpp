@@ -483,6 +483,21 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
     order = std::move(cut);
     ++log.round;
   }
+  if (!log.empty() && !log.converged() && !order.empty() && deadline.over()) {
+    // The solve's clock (or a stop) ended the rounds with seeds still cut: say so, beside the
+    // best attempt's own reason, which alone reads as if that attempt had the last word.
+    SeededSolution& best = log.best();
+    best.time_limit_reached = true;
+    std::ostringstream why_ended;
+    why_ended << best.reason << "; ";
+    if (deadline.stop() != nullptr && deadline.stop()->load()) {
+      why_ended << "stopped";
+    } else {
+      why_ended << "the solve's time limit of " << deadline.limit().value_or(0.0) << " s ran out";
+    }
+    why_ended << " in round " << log.round << " of the seeds' budgets";
+    best.reason = why_ended.str();
+  }
   if (log.empty()) {
     log.best().status = ocp::SolveStatus::kInfeasible;
     log.best().reason =

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -133,6 +134,8 @@ TEST_F(CliTest, CheckReadsAProblemAndItsTerrain) {
   const nlohmann::json json = nlohmann::json::parse(ok.out);
   EXPECT_EQ(json["problem"]["vehicle"]["model"], "rocker_bogie");
   EXPECT_NEAR(json["problem"]["goal"]["heading"].get<double>(), M_PI / 2, 1e-12);
+  // No solver.time_limit_s: the default wall clock, stated, so that no solve runs forever.
+  EXPECT_DOUBLE_EQ(json["problem"]["solver"]["time_limit_s"].get<double>(), 300.0);
   EXPECT_GT(json["terrain"]["lethal_cells"].get<int>(), 0);
   EXPECT_TRUE(json["start_attitude"]["pitch"].is_number());
 
@@ -391,6 +394,32 @@ TEST_F(CliTest, SolveByCollocationAndShooting) {
   EXPECT_EQ(shot["status"], "converged");
   EXPECT_LT(shot["terminal_error"]["position_m"].get<double>(), 0.01);
   EXPECT_FALSE(shot["ipopt_status"].get<std::string>().empty());
+}
+
+// The Segway RMP's CSV carries its platform pitch after the contract's columns (contract,
+// Additions), and the report states the solve's time limit: the default when the file sets none.
+TEST_F(CliTest, SolveWritesTheSegwaysPlatformPitch) {
+  write("segway.yaml",
+        "terrain:\n  generate: {kind: hill, rows: 64, cols: 64, cell: 0.25, seed: 1}\n"
+        "vehicle:\n  model: segway_rmp\n"
+        "start: {x: 3.0, y: 6.0, heading_deg: 0, v: 0.5}\n"
+        "goal:  {x: 9.0, y: 7.0, heading_deg: 0, v: 0.5}\n");
+  const CliResult ok = run({"solve", path("segway.yaml"), "--json", "--out", path("segway.csv")});
+  ASSERT_EQ(ok.status, kExitSuccess) << ok.err << ok.out;
+  const nlohmann::json json = nlohmann::json::parse(ok.out);
+  EXPECT_DOUBLE_EQ(json["time_limit_s"].get<double>(), 300.0);
+  EXPECT_FALSE(json["time_limit_reached"].get<bool>());
+  std::ifstream csv(path("segway.csv"));
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "t,x,y,z,heading,roll,pitch,v,omega,curvature,platform_pitch");
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    const double platform = std::stod(line.substr(line.rfind(',') + 1));
+    EXPECT_TRUE(std::isfinite(platform)) << line;  // t, v and pitch are known on every row
+    ++rows;
+  }
+  EXPECT_GT(rows, 10);
 }
 
 }  // namespace

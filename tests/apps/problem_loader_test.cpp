@@ -75,7 +75,7 @@ TEST(ProblemLoader, ContractExampleParses) {
   EXPECT_EQ(p.solver.max_iterations, 100);
   EXPECT_DOUBLE_EQ(p.solver.tolerance_position_m, 0.001);
   EXPECT_DOUBLE_EQ(p.solver.tolerance_heading_rad, 0.001);
-  EXPECT_FALSE(p.solver.time_limit_s.has_value());
+  EXPECT_EQ(p.solver.time_limit_s, std::optional<double>(kDefaultSolveTimeLimitS));
   EXPECT_EQ(p.planner.kind, PlannerKind::kPrm);
   EXPECT_EQ(p.planner.time_limit_s, std::optional<double>(1.0));
   EXPECT_EQ(p.planner.seed, 1u);
@@ -123,7 +123,7 @@ TEST(ProblemLoader, MinimalProblemTakesDefaults) {
   EXPECT_EQ(p.solver.max_iterations, 100);
   EXPECT_DOUBLE_EQ(p.solver.tolerance_position_m, 0.001);
   EXPECT_DOUBLE_EQ(p.solver.tolerance_heading_rad, 0.001);
-  EXPECT_FALSE(p.solver.time_limit_s.has_value());
+  EXPECT_EQ(p.solver.time_limit_s, std::optional<double>(kDefaultSolveTimeLimitS));
   EXPECT_EQ(p.planner.kind, PlannerKind::kPrm);
   EXPECT_FALSE(p.planner.time_limit_s.has_value());
   EXPECT_DOUBLE_EQ(planningTimeLimit(p), 1.0);

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "terratraj/terrain/input_error.hpp"
 
@@ -46,6 +48,39 @@ TEST(TrajectoryCsv, WritesTheContractHeaderAndReadsItBack) {
   EXPECT_DOUBLE_EQ(back.samples[3].t, 0.3);
   EXPECT_TRUE(std::isnan(back.samples[2].roll));
   EXPECT_DOUBLE_EQ(back.samples[1].curvature, 0.2);
+}
+
+// The Segway RMP's CSV (contract, Additions): platform_pitch after curvature, at each row the
+// pitch response at the acceleration of the segment after it (the last row: before it) and the
+// row's slope; the file reads back with the column skipped.
+TEST(TrajectoryCsv, TheSegwaysCsvCarriesThePlatformPitch) {
+  const SegwayPitchResponse response = defaultSegwayLookups().pitch_response;
+  Trajectory trajectory;
+  const double v[] = {0.0, 0.5, 0.75, 0.75};  // accelerating at 1, 0.5, 0 m/s^2 over 0.5 s each
+  const double slope[] = {0.1, 0.2, -0.1, 0.0};
+  for (int i = 0; i < 4; ++i) {
+    trajectory.samples.push_back({0.5 * i, 1.0 + i, 2.0, 0.5, 0.0, 0.0, slope[i], v[i], 0.0, 0.0});
+  }
+  trajectory.samples[1].pitch = std::nan("");
+  std::ostringstream out;
+  writeTrajectoryCsv(trajectory, out, &response);
+  EXPECT_EQ(out.str().substr(0, out.str().find('\n')),
+            "t,x,y,z,heading,roll,pitch,v,omega,curvature,platform_pitch");
+  const Trajectory back = read(out.str());
+  EXPECT_EQ(back.ignored_columns, std::vector<std::string>{"platform_pitch"});
+  const std::vector<double> column = platformPitchColumn(trajectory, response);
+  ASSERT_EQ(column.size(), 4u);
+  EXPECT_NEAR(column[0], response.pitch(1.0, 0.1), 1e-12);
+  EXPECT_TRUE(std::isnan(column[1]));  // its slope is not known
+  EXPECT_NEAR(column[2], response.pitch(0.0, -0.1), 1e-12);
+  EXPECT_NEAR(column[3], response.pitch(0.0, 0.0), 1e-12);
+  // Accelerating uphill tips the platform further than holding speed on the flat.
+  EXPECT_GT(std::abs(column[0]), std::abs(column[3]) + 0.05);
+  std::istringstream rows(out.str());
+  std::string line;
+  std::getline(rows, line);
+  std::getline(rows, line);
+  EXPECT_NEAR(std::stod(line.substr(line.rfind(',') + 1)), column[0], 1e-9);
 }
 
 TEST(TrajectoryCsv, ReadsGeometricPathsInAnyColumnOrder) {

@@ -180,6 +180,21 @@ TEST_F(SeededSolverTest, StepsThatEndedOnTheirOwnAreNotRetried) {
   }
 }
 
+// When the solve's own clock ends the rounds (here a limit of 0 s: the first seed is tried and
+// cut at once), the result says so: time_limit_reached, and a reason naming the limit beside the
+// best attempt's own.
+TEST_F(SeededSolverTest, ASolveItsTimeLimitEndsSaysSo) {
+  const ocp::BoundaryValueProblem problem = sets::turnBacks(1, 7).front();
+  SeededSolveOptions options;
+  options.time_limit_s = 0.0;
+  const SeededSolution s = solveSeeded(vehicle_, problem, &map_, options);
+  ASSERT_NE(s.status, ocp::SolveStatus::kConverged);
+  ASSERT_EQ(s.attempts.size(), 1u);
+  EXPECT_TRUE(s.time_limit_reached);
+  EXPECT_NE(s.reason.find("the solve's time limit of 0 s ran out in round 0"), std::string::npos)
+      << s.reason;
+}
+
 // The parametric ipopt leaves the speed free (speed order 3) and holds v_max and a_max: the
 // smallest rest-to-rest problem is solved.
 TEST_F(SeededSolverTest, ParametricIpoptSolvesRestToRest) {

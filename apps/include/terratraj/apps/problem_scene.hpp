@@ -48,6 +48,10 @@ class ProblemScene {
   const models::SegwayLookups* segwayLookups() const {
     return segway_lookups_ ? &*segway_lookups_ : nullptr;
   }
+  /// The Segway RMP's pitch response for the CSVs' platform_pitch column, else null.
+  const models::SegwayPitchResponse* platformPitchResponse() const {
+    return segway_lookups_ ? &segway_lookups_->pitch_response : nullptr;
+  }
   /// The speed limit by pitch the searches hold: the Segway's speed bound by slope
   /// (models::slopeSpeedTable, with the problem's pitch table when it names one) for that
   /// vehicle, else pitchTable().

@@ -182,6 +182,11 @@ struct CostSpec {
   double alpha = 0.0;  ///< slope_dwell weight on roll^2 + pitch^2 [1/rad^2], >= 0
 };
 
+/// `solve`'s wall clock when the problem file gives no solver.time_limit_s [s]. The global
+/// seeds' rounds double the budget of every seed they cut until one converges or the time
+/// runs out, so without a limit a problem no seed converges on would never end.
+inline constexpr double kDefaultSolveTimeLimitS = 300.0;
+
 /// `solver`: the boundary-value solver and its stopping rules.
 struct SolverSpec {
   SolverMethod method = SolverMethod::kAuto;  ///< auto: global seeds, collocation, best verified
@@ -213,7 +218,8 @@ struct SolverSpec {
   int mesh_refinement_rounds = 0;           ///< re-solves with split intervals, >= 0
   double mesh_refinement_tolerance = 1e-3;  ///< local error that splits an interval [m, rad]
   std::optional<double> min_clearance_m;    ///< clearance from lethal cells [m]; absent = none
-  std::optional<double> time_limit_s;       ///< wall-clock limit [s], >= 0; absent = none
+  /// Wall-clock limit of the whole solve [s], >= 0 (reported in the solve report's `problem`).
+  std::optional<double> time_limit_s = kDefaultSolveTimeLimitS;
   /// auto seeds: each seed's first budget [s], > 0, doubled for the seeds it cut each round;
   /// absent: refine::kDefaultSeedTimeS
   std::optional<double> seed_time_s;

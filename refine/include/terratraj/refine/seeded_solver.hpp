@@ -173,7 +173,8 @@ struct SeededSolution {
   /// The result's attempt ended by its clock (a solver's time limit, a verification round
   /// it could not start, the search seed's PRM budget cut below search_time_s): with more time
   /// it may end otherwise. Else the same seed and options give the same result again, which
-  /// solveSeeded's later rounds do not repeat.
+  /// solveSeeded's later rounds do not repeat. Also set, with the reason saying so, when
+  /// time_limit_s (or a stop) ended the rounds before every cut seed had its next budget.
   bool time_limit_reached = false;
   double total_time_ms = 0.0;
 };
