@@ -218,7 +218,8 @@ struct SolverSpec {
   int mesh_refinement_rounds = 0;           ///< re-solves with split intervals, >= 0
   double mesh_refinement_tolerance = 1e-3;  ///< local error that splits an interval [m, rad]
   std::optional<double> min_clearance_m;    ///< clearance from lethal cells [m]; absent = none
-  /// Wall-clock limit of the whole solve [s], >= 0 (reported in the solve report's `problem`).
+  /// Wall-clock limit of the whole solve [s], >= 0 (the solve report's `time_limit_s`). In
+  /// `refine` and `plan --refine` it caps each solve of a refinement without refine.time_limit_s.
   std::optional<double> time_limit_s = kDefaultSolveTimeLimitS;
   /// auto seeds: each seed's first budget [s], > 0, doubled for the seeds it cut each round;
   /// absent: refine::kDefaultSeedTimeS
