@@ -62,9 +62,32 @@ void BM_SampleBilinear(benchmark::State& state) {
 void BM_SampleBicubic(benchmark::State& state) {
   sampleHeightAndGradient(state, Interpolation::kBicubic);
 }
+void BM_SampleBSpline(benchmark::State& state) {
+  sampleHeightAndGradient(state, Interpolation::kCubicBSpline);
+}
+// Height, gradient and Hessian, as the point model's attitude takes them.
+void sampleWithHessian(benchmark::State& state, Interpolation method) {
+  const ElevationMap& map = hills1024();
+  const TerrainSurface surface(map, method);
+  const std::vector<Eigen::Vector2d> points = queryPoints(map, 4096);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(surface.sampleWithHessian(points[i]));
+    i = (i + 1) & 4095;
+  }
+}
+void BM_SampleBicubicWithHessian(benchmark::State& state) {
+  sampleWithHessian(state, Interpolation::kBicubic);
+}
+void BM_SampleBSplineWithHessian(benchmark::State& state) {
+  sampleWithHessian(state, Interpolation::kCubicBSpline);
+}
 BENCHMARK(BM_SampleNearest);
 BENCHMARK(BM_SampleBilinear);
 BENCHMARK(BM_SampleBicubic);
+BENCHMARK(BM_SampleBSpline);
+BENCHMARK(BM_SampleBicubicWithHessian);
+BENCHMARK(BM_SampleBSplineWithHessian);
 
 // Consecutive queries along a path, the access pattern of an integrator.
 void BM_SampleBicubicAlongPath(benchmark::State& state) {

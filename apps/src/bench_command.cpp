@@ -143,6 +143,8 @@ nlohmann::json runInWorkers(const BenchOptions& options, const std::vector<int>&
         limit.str(),
         "--data-dir",
         s.data_dir.string(),
+        "--interpolation",
+        terrain::interpolationName(s.interpolation),
         "--cases",
         list,
         "--worker-tag",

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <new>
 #include <optional>
@@ -334,6 +335,16 @@ std::vector<Command> addBench(CLI::App& parent, bool& json_flag) {
       ->add_option("--data-dir", bench->settings.data_dir,
                    "folder of the real DEMs (\"\" skips them)")
       ->capture_default_str();
+  command
+      ->add_option("--interpolation", bench->settings.interpolation,
+                   "the surface of the convergence and robustness sets' maps: bspline (C2, the "
+                   "default of every command) or bicubic (C1)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, terrain::Interpolation>{
+              {"bspline", terrain::Interpolation::kCubicBSpline},
+              {"bicubic", terrain::Interpolation::kBicubic}},
+          CLI::ignore_case))
+      ->default_str("bspline");
   command->add_option("--out", bench->out, "result file (default bench-SUITE.json)");
   command->add_option("--plot", bench->plot, "also draw the figures: FILE.png and siblings");
   command->add_option("--shard", bench->shard, "K/N: run every N-th case from the K-th")

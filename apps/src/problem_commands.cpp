@@ -35,6 +35,7 @@ nlohmann::json terrainSourceJson(const terrain::TerrainSource& source) {
       {"file", optionalPath(source.file)},
       {"z_scale", source.raster.z_scale},
       {"frame", source.frame == terrain::CoordinateFrame::kWorld ? "world" : "local"},
+      {"interpolation", terrain::interpolationName(source.interpolation)},
       {"obstacles",
        {{"file", optionalPath(source.obstacles.file)},
         {"max_slope", source.obstacles.max_slope ? nlohmann::json(*source.obstacles.max_slope)

@@ -103,9 +103,20 @@ std::optional<terrain::CoordinateFrame> parseFrame(std::string_view name) {
   return std::nullopt;
 }
 
+// `terrain.interpolation` names: the surfaces smooth enough to optimise on (C1 or better).
+std::optional<terrain::Interpolation> parseSmoothInterpolation(std::string_view name) {
+  const std::optional<terrain::Interpolation> method = terrain::parseInterpolation(name);
+  if (method == terrain::Interpolation::kBicubic ||
+      method == terrain::Interpolation::kCubicBSpline) {
+    return method;
+  }
+  return std::nullopt;
+}
+
 // `terrain`: exactly one of file and generate, plus raster options, frame and obstacles.
 terrain::TerrainSource parseTerrain(const Context& ctx, const Field& field) {
-  const MapReader map(ctx, field, {"file", "generate", "cell", "z_scale", "frame", "obstacles"});
+  const MapReader map(
+      ctx, field, {"file", "generate", "cell", "z_scale", "frame", "obstacles", "interpolation"});
   terrain::TerrainSource source;
   const std::optional<Field> file = map.find("file");
   const std::optional<Field> generate = map.find("generate");
@@ -131,6 +142,10 @@ terrain::TerrainSource parseTerrain(const Context& ctx, const Field& field) {
   }
   if (const std::optional<Field> frame = map.find("frame")) {
     source.frame = readEnum<terrain::CoordinateFrame>(ctx, *frame, parseFrame, {"local", "world"});
+  }
+  if (const std::optional<Field> interpolation = map.find("interpolation")) {
+    source.interpolation = readEnum<terrain::Interpolation>(
+        ctx, *interpolation, parseSmoothInterpolation, {"bspline", "bicubic"});
   }
   if (const std::optional<Field> obstacles = map.find("obstacles")) {
     source.obstacles = parseObstacles(ctx, *obstacles);

@@ -53,7 +53,7 @@ void checkAttitudeLimits(const models::AttitudeResult& attitude, const char* whi
 ProblemScene::ProblemScene(const ProblemSpec& problem, const CommandContext& context)
     : map_(loadTerrain(problem, context)),
       poses_(resolvePoses(problem, map_)),
-      surface_(map_, terrain::Interpolation::kBicubic) {
+      surface_(map_, problem.terrain.interpolation) {
   if (problem.vehicle.tables.pitch) {
     pitch_table_ = models::readPitchTable(*problem.vehicle.tables.pitch);
   }

@@ -35,7 +35,8 @@ nlohmann::json BenchmarkSettings::toJson() const {
           {"seed", seed},
           {"seeds", seeds},
           {"time_limit_s", time_limit_s},
-          {"data_dir", data_dir.string()}};
+          {"data_dir", data_dir.string()},
+          {"interpolation", terrain::interpolationName(interpolation)}};
 }
 
 BenchmarkSettings BenchmarkSettings::fromJson(const nlohmann::json& json,
@@ -47,6 +48,13 @@ BenchmarkSettings BenchmarkSettings::fromJson(const nlohmann::json& json,
   s.seeds = required<int>(json, "seeds", source);
   s.time_limit_s = required<double>(json, "time_limit_s", source);
   s.data_dir = required<std::string>(json, "data_dir", source);
+  s.interpolation = terrain::Interpolation::kBicubic;
+  if (json.contains("interpolation")) {
+    const std::optional<terrain::Interpolation> method =
+        terrain::parseInterpolation(required<std::string>(json, "interpolation", source));
+    if (!method) throw InputError(source + ": settings.interpolation is not a surface's name");
+    s.interpolation = *method;
+  }
   return s;
 }
 

@@ -62,12 +62,12 @@ std::unique_ptr<models::TerrainFollowingModel> makeVehicle(const std::string& na
 
 // The surface and vehicle point into the map: the data is built in place and never moved.
 std::unique_ptr<ProblemSetData> finish(terrain::ElevationMap map, const std::string& vehicle,
-                                       std::vector<ocp::BoundaryValueProblem> problems) {
+                                       std::vector<ocp::BoundaryValueProblem> problems,
+                                       terrain::Interpolation interpolation) {
   auto data = std::make_unique<ProblemSetData>();
   data->map = std::move(map);
   data->problems = std::move(problems);
-  data->surface =
-      std::make_unique<terrain::TerrainSurface>(data->map, terrain::Interpolation::kBicubic);
+  data->surface = std::make_unique<terrain::TerrainSurface>(data->map, interpolation);
   data->vehicle = makeVehicle(vehicle, *data->surface);
   return data;
 }
@@ -97,27 +97,29 @@ const DemSpec kDems[] = {
 
 std::vector<ProblemSetSpec> problemSets(const BenchmarkSettings& settings) {
   const bool quick = settings.quick;
+  const terrain::Interpolation surface = settings.interpolation;
   std::vector<ProblemSetSpec> specs;
-  specs.push_back({"flat_fan", "point", quick ? 5 : 45, [quick] {
-                     return finish(sets::flatMap(), "point", cut(sets::flatFan(), quick ? 5 : 45));
+  specs.push_back({"flat_fan", "point", quick ? 5 : 45, [quick, surface] {
+                     return finish(sets::flatMap(), "point", cut(sets::flatFan(), quick ? 5 : 45),
+                                   surface);
                    }});
-  specs.push_back({"rough_lattice", "rocker_bogie", quick ? 6 : 94, [quick] {
+  specs.push_back({"rough_lattice", "rocker_bogie", quick ? 6 : 94, [quick, surface] {
                      return finish(sets::roughMap(), "rocker_bogie",
-                                   cut(sets::roughLattice(), quick ? 6 : 94));
+                                   cut(sets::roughLattice(), quick ? 6 : 94), surface);
                    }});
-  specs.push_back({"slope_dwell", "point", 3, [] {
+  specs.push_back({"slope_dwell", "point", 3, [surface] {
                      std::vector<ocp::BoundaryValueProblem> problems;
                      for (const double alpha : {0.0, 1.0, 2.0}) {
                        problems.push_back(sets::singleHillProblem(alpha));
                      }
-                     return finish(sets::singleHillMap(), "point", problems);
+                     return finish(sets::singleHillMap(), "point", problems, surface);
                    }});
   if (settings.data_dir.empty()) return specs;
   const int per_dem = quick ? 2 : 10;
   for (const DemSpec& dem : kDems) {
     const std::filesystem::path path = settings.data_dir / dem.file;
     const std::uint64_t seed = settings.seed;
-    specs.push_back({dem.name, "point", per_dem, [path, dem, per_dem, seed] {
+    specs.push_back({dem.name, "point", per_dem, [path, dem, per_dem, seed, surface] {
                        terrain::RasterLoadOptions load;
                        load.cell = dem.cell;
                        load.z_scale = dem.z_scale;
@@ -127,7 +129,7 @@ std::vector<ProblemSetSpec> problemSets(const BenchmarkSettings& settings) {
                        random.seed = seed;
                        std::vector<ocp::BoundaryValueProblem> problems =
                            sets::randomProblems(map, random);
-                       return finish(std::move(map), "point", std::move(problems));
+                       return finish(std::move(map), "point", std::move(problems), surface);
                      }});
   }
   return specs;

@@ -74,11 +74,11 @@ struct RobustSetSpec {
   std::function<std::unique_ptr<RobustSetData>()> build;
 };
 
-std::unique_ptr<RobustSetData> makeData(terrain::ElevationMap map, VehicleModelKind vehicle) {
+std::unique_ptr<RobustSetData> makeData(terrain::ElevationMap map, VehicleModelKind vehicle,
+                                        terrain::Interpolation interpolation) {
   auto data = std::make_unique<RobustSetData>();
   data->map = std::move(map);
-  data->surface =
-      std::make_unique<terrain::TerrainSurface>(data->map, terrain::Interpolation::kBicubic);
+  data->surface = std::make_unique<terrain::TerrainSurface>(data->map, interpolation);
   data->vehicle = makeTerrainFollowingModel(vehicle, *data->surface);
   data->segway = vehicle == VehicleModelKind::kSegwayRmp;
   return data;
@@ -86,18 +86,21 @@ std::unique_ptr<RobustSetData> makeData(terrain::ElevationMap map, VehicleModelK
 
 std::vector<RobustSetSpec> robustSets(const BenchmarkSettings& settings) {
   const bool quick = settings.quick;
+  const terrain::Interpolation interpolation = settings.interpolation;
   // Seeds apart from the unit tests' (which draw with seeds 1..).
   const std::uint64_t seed = 1000 + settings.seed;
   std::vector<RobustSetSpec> specs;
   const int turns = quick ? 4 : 40, backs = quick ? 2 : 10;
-  specs.push_back({"robust/turns", "point", turns, [turns, seed] {
-                     auto data = makeData(sets::openFlatMap(), VehicleModelKind::kPoint);
+  specs.push_back({"robust/turns", "point", turns, [turns, seed, interpolation] {
+                     auto data =
+                         makeData(sets::openFlatMap(), VehicleModelKind::kPoint, interpolation);
                      data->problems = sets::constantSpeedTurns(turns, seed);
                      data->dubins_bound = true;
                      return data;
                    }});
-  specs.push_back({"robust/turn_backs", "point", backs, [backs, seed] {
-                     auto data = makeData(sets::openFlatMap(), VehicleModelKind::kPoint);
+  specs.push_back({"robust/turn_backs", "point", backs, [backs, seed, interpolation] {
+                     auto data =
+                         makeData(sets::openFlatMap(), VehicleModelKind::kPoint, interpolation);
                      data->problems = sets::turnBacks(backs, seed + 1);
                      return data;
                    }});
@@ -106,24 +109,24 @@ std::vector<RobustSetSpec> robustSets(const BenchmarkSettings& settings) {
   for (const RobustDem& dem : kRobustDems) {
     for (const VehicleModelKind vehicle : kVehicles) {
       const std::filesystem::path path = settings.data_dir / dem.file;
-      specs.push_back({std::string("robust/") + dem.name + "_" + vehicleModelName(vehicle),
-                       vehicleModelName(vehicle), per, [path, dem, vehicle, per, seed] {
-                         terrain::RasterLoadOptions load;
-                         load.cell = dem.cell;
-                         load.z_scale = dem.z_scale;
-                         terrain::ElevationMap map = terrain::loadElevationMap(path, load);
-                         if (dem.lethal_slope_deg) {
-                           terrain::markLethalBySlope(
-                               map, *dem.lethal_slope_deg * 3.14159265358979 / 180);
-                         }
-                         auto data = makeData(std::move(map), vehicle);
-                         data->problems = sets::terrainProblems(data->map, *data->vehicle,
-                                                                sets::roverLimits(), per, seed + 2);
-                         for (ocp::BoundaryValueProblem& problem : data->problems) {
-                           if (data->segway) problem.tables.segway = &data->segway_lookups;
-                         }
-                         return data;
-                       }});
+      specs.push_back(
+          {std::string("robust/") + dem.name + "_" + vehicleModelName(vehicle),
+           vehicleModelName(vehicle), per, [path, dem, vehicle, per, seed, interpolation] {
+             terrain::RasterLoadOptions load;
+             load.cell = dem.cell;
+             load.z_scale = dem.z_scale;
+             terrain::ElevationMap map = terrain::loadElevationMap(path, load);
+             if (dem.lethal_slope_deg) {
+               terrain::markLethalBySlope(map, *dem.lethal_slope_deg * 3.14159265358979 / 180);
+             }
+             auto data = makeData(std::move(map), vehicle, interpolation);
+             data->problems = sets::terrainProblems(data->map, *data->vehicle, sets::roverLimits(),
+                                                    per, seed + 2);
+             for (ocp::BoundaryValueProblem& problem : data->problems) {
+               if (data->segway) problem.tables.segway = &data->segway_lookups;
+             }
+             return data;
+           }});
     }
   }
   return specs;

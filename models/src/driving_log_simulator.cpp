@@ -46,7 +46,7 @@ Trajectory simulateDrivingLog(const DrivingLogOptions& o) {
   course.cell = o.terrain_cell;
   course.seed = o.seed;
   const terrain::ElevationMap map = terrain::generateTerrain(course);
-  const terrain::TerrainSurface surface(map, terrain::Interpolation::kBicubic);
+  const terrain::TerrainSurface surface(map, terrain::kDefaultInterpolation);
   const PointAttitudeModel model(surface);
   const RoverKinematics kinematics(model);
   AttitudeWorkspace workspace;

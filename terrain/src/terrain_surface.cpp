@@ -55,6 +55,47 @@ CubicWeights catmullRomWeights(double t) {
            0.5 * (1.0 + 8.0 * t - 9.0 * t2), 0.5 * (-2.0 * t + 3.0 * t2)}};
 }
 
+// The uniform cubic B-spline's weights of the coefficients (i-1 .. i+2) of one axis at
+// fraction t, with their first and second derivatives in t.
+struct SplineBasis {
+  double w[4];
+  double dw[4];
+  double d2w[4];
+};
+
+SplineBasis bSplineBasis(double t) {
+  const double s = 1.0 - t;
+  const double t2 = t * t;
+  const double t3 = t2 * t;
+  return {{s * s * s / 6.0, (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0,
+           (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0, t3 / 6.0},
+          {-0.5 * s * s, 1.5 * t2 - 2.0 * t, -1.5 * t2 + t + 0.5, 0.5 * t2},
+          {s, 3.0 * t - 2.0, 1.0 - 3.0 * t, t}};
+}
+
+// One axis of the spline's coefficient at a centre: the quasi-interpolant
+// (-before + 8 at - after) / 6, which makes the spline reproduce cubics; the height itself where
+// a neighbour is no data (so that the spline needs no more samples than its 4 x 4 support).
+double prefiltered(double before, double at, double after) {
+  if (std::isnan(before) || std::isnan(after)) return at;
+  return (8.0 * at - before - after) / 6.0;
+}
+
+// The spline's 4 x 4 coefficients at the centres (row0 + 1 .., col0 + 1 ..) from the 6 x 6
+// heights from (row0, col0): along x, then along y. A coefficient depends only on the heights
+// around its own centre, so every stencil computes it alike and the surface is one C2 spline.
+void bSplineCoefficients(const double (&z)[6][6], double (&c)[4][4]) {
+  double along_x[6][4];
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 4; ++j) along_x[i][j] = prefiltered(z[i][j], z[i][j + 1], z[i][j + 2]);
+  }
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      c[i][j] = prefiltered(along_x[i][j], along_x[i + 1][j], along_x[i + 2][j]);
+    }
+  }
+}
+
 std::optional<HeightSample> finiteOrNothing(double height, double gx, double gy) {
   if (std::isnan(height) || std::isnan(gx) || std::isnan(gy)) return std::nullopt;
   return HeightSample{height, Eigen::Vector2d(gx, gy)};
@@ -74,12 +115,79 @@ double axisDifference(const GridLayer& z, CellIndex c, int d_row, int d_col, int
   return std::nan("");
 }
 
+// The height at (row, col), continued linearly beyond the grid along each axis through the
+// two outermost samples, so that planes are reproduced exactly.
+double extrapolatedHeight(const float* heights, int rows, int cols, int row, int col) {
+  if (col < 0 || col >= cols) {
+    const int edge = col < 0 ? 0 : cols - 1;
+    const int inner = col < 0 ? 1 : cols - 2;
+    const double z_edge = extrapolatedHeight(heights, rows, cols, row, edge);
+    const double z_inner = extrapolatedHeight(heights, rows, cols, row, inner);
+    return z_edge + std::abs(col - edge) * (z_edge - z_inner);
+  }
+  if (row < 0 || row >= rows) {
+    const int edge = row < 0 ? 0 : rows - 1;
+    const int inner = row < 0 ? 1 : rows - 2;
+    const double z_edge = extrapolatedHeight(heights, rows, cols, edge, col);
+    const double z_inner = extrapolatedHeight(heights, rows, cols, inner, col);
+    return z_edge + std::abs(row - edge) * (z_edge - z_inner);
+  }
+  return heights[static_cast<std::size_t>(row) * cols + col];
+}
+
+// The N x N heights from (row0, col0), extrapolated linearly where they leave the grid.
+template <int N>
+void gatherStencil(const float* heights, int rows, int cols, int row0, int col0,
+                   double (&z)[N][N]) {
+  if (row0 >= 0 && col0 >= 0 && row0 + N - 1 < rows && col0 + N - 1 < cols) {
+    for (int i = 0; i < N; ++i) {
+      const float* row = heights + static_cast<std::size_t>(row0 + i) * cols + col0;
+      for (int j = 0; j < N; ++j) z[i][j] = row[j];
+    }
+    return;
+  }
+  for (int i = 0; i < N; ++i) {
+    for (int j = 0; j < N; ++j)
+      z[i][j] = extrapolatedHeight(heights, rows, cols, row0 + i, col0 + j);
+  }
+}
+
+// Height, gradient and Hessian of a tensor-product surface sum_ij wy[i] wx[j] z[i][j], given
+// each axis's weights and their first and second derivatives in the fraction, and
+// d(fraction)/d(coordinate) per axis [1/m].
+template <int N>
+SurfaceDerivatives tensorDerivatives(const double (&z)[N][N], const double* wx, const double* dwx,
+                                     const double* d2wx, const double* wy, const double* dwy,
+                                     const double* d2wy, double du, double dv) {
+  double h = 0.0, hx = 0.0, hy = 0.0, hxx = 0.0, hxy = 0.0, hyy = 0.0;
+  for (int i = 0; i < N; ++i) {
+    double value = 0.0, slope = 0.0, bend = 0.0;
+    for (int j = 0; j < N; ++j) {
+      value += wx[j] * z[i][j];
+      slope += dwx[j] * z[i][j];
+      bend += d2wx[j] * z[i][j];
+    }
+    h += wy[i] * value;
+    hx += wy[i] * slope;
+    hy += dwy[i] * value;
+    hxx += wy[i] * bend;
+    hxy += dwy[i] * slope;
+    hyy += d2wy[i] * value;
+  }
+  SurfaceDerivatives d;
+  d.height = h;
+  d.gradient = Eigen::Vector2d(hx * du, hy * dv);
+  d.hessian << hxx * du * du, hxy * du * dv, hxy * du * dv, hyy * dv * dv;
+  return d;
+}
+
 }  // namespace
 
 std::optional<Interpolation> parseInterpolation(std::string_view name) {
   if (name == "nearest") return Interpolation::kNearest;
   if (name == "bilinear") return Interpolation::kBilinear;
   if (name == "bicubic") return Interpolation::kBicubic;
+  if (name == "bspline") return Interpolation::kCubicBSpline;
   return std::nullopt;
 }
 
@@ -91,6 +199,8 @@ const char* interpolationName(Interpolation method) {
       return "bilinear";
     case Interpolation::kBicubic:
       return "bicubic";
+    case Interpolation::kCubicBSpline:
+      return "bspline";
   }
   return "unknown";
 }
@@ -102,6 +212,8 @@ int TerrainSurface::stencilReach() const {
     case Interpolation::kBilinear:
       return 1;
     case Interpolation::kBicubic:
+      return 2;
+    case Interpolation::kCubicBSpline:
       return 2;
   }
   return 2;
@@ -143,6 +255,8 @@ std::optional<HeightSample> TerrainSurface::sample(const Eigen::Vector2d& local)
       return sampleBilinear(x, y);
     case Interpolation::kBicubic:
       return sampleBicubic(x, y);
+    case Interpolation::kCubicBSpline:
+      return sampleBSpline(x, y);
   }
   return std::nullopt;
 }
@@ -172,32 +286,25 @@ std::optional<SurfaceDerivatives> TerrainSurface::sampleWithHessian(
     d.hessian(0, 1) = d.hessian(1, 0) = twist * ax.dt_dcoord * ay.dt_dcoord;
     return d;
   }
-  const CubicWeights wx = catmullRomWeights(ax.t);
-  const CubicWeights wy = catmullRomWeights(ay.t);
-  const CubicCurvatures cx = catmullRomCurvatures(ax.t);
-  const CubicCurvatures cy = catmullRomCurvatures(ay.t);
-  double z[4][4];
-  gatherStencil(ay.index - 1, ax.index - 1, z);
-  double h = 0.0, hx = 0.0, hy = 0.0, hxx = 0.0, hxy = 0.0, hyy = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    double value = 0.0, slope = 0.0, bend = 0.0;
-    for (int j = 0; j < 4; ++j) {
-      value += wx.w[j] * z[i][j];
-      slope += wx.dw[j] * z[i][j];
-      bend += cx.d2w[j] * z[i][j];
-    }
-    h += wy.w[i] * value;
-    hx += wy.w[i] * slope;
-    hy += wy.dw[i] * value;
-    hxx += wy.w[i] * bend;
-    hxy += wy.dw[i] * slope;
-    hyy += cy.d2w[i] * value;
+  if (method_ == Interpolation::kCubicBSpline) {
+    const SplineBasis wx = bSplineBasis(ax.t);
+    const SplineBasis wy = bSplineBasis(ay.t);
+    double z[6][6];
+    gatherStencil(heights_, rows_, cols_, ay.index - 2, ax.index - 2, z);
+    double c[4][4];
+    bSplineCoefficients(z, c);
+    d = tensorDerivatives(c, wx.w, wx.dw, wx.d2w, wy.w, wy.dw, wy.d2w, ax.dt_dcoord, ay.dt_dcoord);
+  } else {
+    const CubicWeights wx = catmullRomWeights(ax.t);
+    const CubicWeights wy = catmullRomWeights(ay.t);
+    const CubicCurvatures cx = catmullRomCurvatures(ax.t);
+    const CubicCurvatures cy = catmullRomCurvatures(ay.t);
+    double z[4][4];
+    gatherStencil(heights_, rows_, cols_, ay.index - 1, ax.index - 1, z);
+    d = tensorDerivatives(z, wx.w, wx.dw, cx.d2w, wy.w, wy.dw, cy.d2w, ax.dt_dcoord, ay.dt_dcoord);
   }
-  const double du = ax.dt_dcoord, dv = ay.dt_dcoord;
-  d.height = h;
-  d.gradient = Eigen::Vector2d(hx * du, hy * dv);
-  d.hessian << hxx * du * du, hxy * du * dv, hxy * du * dv, hyy * dv * dv;
-  if (!std::isfinite(h) || !d.gradient.allFinite() || !d.hessian.allFinite()) return std::nullopt;
+  if (!std::isfinite(d.height) || !d.gradient.allFinite() || !d.hessian.allFinite())
+    return std::nullopt;
   return d;
 }
 
@@ -236,7 +343,7 @@ std::optional<HeightSample> TerrainSurface::sampleBicubic(double x, double y) co
   const CubicWeights wx = catmullRomWeights(ax.t);
   const CubicWeights wy = catmullRomWeights(ay.t);
   double z[4][4];
-  gatherStencil(ay.index - 1, ax.index - 1, z);
+  gatherStencil(heights_, rows_, cols_, ay.index - 1, ax.index - 1, z);
   double height = 0.0, dz_dtx = 0.0, dz_dty = 0.0;
   for (int i = 0; i < 4; ++i) {
     double value = 0.0, slope = 0.0;
@@ -251,30 +358,27 @@ std::optional<HeightSample> TerrainSurface::sampleBicubic(double x, double y) co
   return finiteOrNothing(height, dz_dtx * ax.dt_dcoord, dz_dty * ay.dt_dcoord);
 }
 
-void TerrainSurface::gatherStencil(int row0, int col0, double (&z)[4][4]) const {
-  if (row0 >= 0 && col0 >= 0 && row0 + 3 < rows_ && col0 + 3 < cols_) {
-    for (int i = 0; i < 4; ++i) {
-      const float* row = heights_ + static_cast<std::size_t>(row0 + i) * cols_ + col0;
-      for (int j = 0; j < 4; ++j) z[i][j] = row[j];
-    }
-    return;
-  }
+std::optional<HeightSample> TerrainSurface::sampleBSpline(double x, double y) const {
+  const AxisPosition ax = locateOnAxis(x, inv_cell_, cols_);
+  const AxisPosition ay = locateOnAxis(y, inv_cell_, rows_);
+  const SplineBasis wx = bSplineBasis(ax.t);
+  const SplineBasis wy = bSplineBasis(ay.t);
+  double z[6][6];
+  gatherStencil(heights_, rows_, cols_, ay.index - 2, ax.index - 2, z);
+  double c[4][4];
+  bSplineCoefficients(z, c);
+  double height = 0.0, dz_dtx = 0.0, dz_dty = 0.0;
   for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) z[i][j] = extrapolatedHeight(row0 + i, col0 + j);
+    double value = 0.0, slope = 0.0;
+    for (int j = 0; j < 4; ++j) {
+      value += wx.w[j] * c[i][j];
+      slope += wx.dw[j] * c[i][j];
+    }
+    height += wy.w[i] * value;
+    dz_dtx += wy.w[i] * slope;
+    dz_dty += wy.dw[i] * value;
   }
-}
-
-double TerrainSurface::extrapolatedHeight(int row, int col) const {
-  // One cell beyond the grid, continue the line through the two outermost samples.
-  if (col < 0) return 2.0 * extrapolatedHeight(row, 0) - extrapolatedHeight(row, 1);
-  if (col >= cols_) {
-    return 2.0 * extrapolatedHeight(row, cols_ - 1) - extrapolatedHeight(row, cols_ - 2);
-  }
-  if (row < 0) return 2.0 * extrapolatedHeight(0, col) - extrapolatedHeight(1, col);
-  if (row >= rows_) {
-    return 2.0 * extrapolatedHeight(rows_ - 1, col) - extrapolatedHeight(rows_ - 2, col);
-  }
-  return heights_[static_cast<std::size_t>(row) * cols_ + col];
+  return finiteOrNothing(height, dz_dtx * ax.dt_dcoord, dz_dty * ay.dt_dcoord);
 }
 
 }  // namespace terratraj::terrain

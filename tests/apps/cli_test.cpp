@@ -136,6 +136,8 @@ TEST_F(CliTest, CheckReadsAProblemAndItsTerrain) {
   EXPECT_NEAR(json["problem"]["goal"]["heading"].get<double>(), M_PI / 2, 1e-12);
   // No solver.time_limit_s: the default wall clock, stated, so that no solve runs forever.
   EXPECT_DOUBLE_EQ(json["problem"]["solver"]["time_limit_s"].get<double>(), 300.0);
+  // The surface every solve of the problem uses, stated: the C2 spline unless the file says.
+  EXPECT_EQ(json["problem"]["terrain"]["interpolation"], "bspline");
   EXPECT_GT(json["terrain"]["lethal_cells"].get<int>(), 0);
   EXPECT_TRUE(json["start_attitude"]["pitch"].is_number());
 

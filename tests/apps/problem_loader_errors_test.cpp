@@ -290,6 +290,10 @@ TEST(ProblemLoader, BadEnumValuesListTheOptions) {
               HasSubstr("terrain.generate.kind: must be one of: " + kinds + " (got \"moon\")"));
   EXPECT_THAT(parseError(withTerrain("{file: a.tif, frame: utm}")),
               HasSubstr("terrain.frame: must be one of: local, world (got \"utm\")"));
+  // Only the surfaces smooth enough to optimise on.
+  EXPECT_THAT(parseError(withTerrain("{file: a.tif, interpolation: bilinear}")),
+              HasSubstr("terrain.interpolation: must be one of: bspline, bicubic (got "
+                        "\"bilinear\")"));
   EXPECT_THAT(parseError(minimalWith("cost: {kind: energy}\n")),
               HasSubstr("cost.kind: must be one of: time, slope_dwell (got \"energy\")"));
   EXPECT_THAT(parseError(minimalWith("solver: {method: gradient}\n")),

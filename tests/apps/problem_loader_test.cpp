@@ -96,6 +96,7 @@ TEST(ProblemLoader, MinimalProblemTakesDefaults) {
   EXPECT_FALSE(p.terrain.raster.cell.has_value());
   EXPECT_DOUBLE_EQ(p.terrain.raster.z_scale, 1.0);
   EXPECT_EQ(p.terrain.frame, terrain::CoordinateFrame::kLocal);
+  EXPECT_EQ(p.terrain.interpolation, terrain::Interpolation::kCubicBSpline);
   EXPECT_FALSE(p.terrain.obstacles.file.has_value());
   EXPECT_FALSE(p.terrain.obstacles.max_slope.has_value());
 
@@ -137,6 +138,7 @@ TEST(ProblemLoader, GenerateOptionsAndOtherSections) {
   generate: {kind: dead_end, rows: 10, cols: 20, cell: 0.5, seed: 18446744073709551615}
   z_scale: -2.5
   frame: world
+  interpolation: bicubic
   obstacles: {max_slope: 0.5}
 vehicle: {model: segway_rmp, limits: {pitch_max: 0.3, roll_max_deg: 45, v_max: 2}}
 start: {x: -1e3, y: +3, heading: 1.0, v: 2, omega: -1}
@@ -160,6 +162,7 @@ planner: {kind: taeasl, time_limit_s: 0, seed: 0, homotopy_classes: 1, frame_rad
   EXPECT_EQ(p.terrain.generate->seed, std::numeric_limits<std::uint64_t>::max());
   EXPECT_DOUBLE_EQ(p.terrain.raster.z_scale, -2.5);
   EXPECT_EQ(p.terrain.frame, terrain::CoordinateFrame::kWorld);
+  EXPECT_EQ(p.terrain.interpolation, terrain::Interpolation::kBicubic);
   EXPECT_EQ(p.pose_frame, terrain::CoordinateFrame::kWorld);
   ASSERT_TRUE(p.terrain.obstacles.max_slope.has_value());
   EXPECT_DOUBLE_EQ(*p.terrain.obstacles.max_slope, 0.5);

@@ -15,7 +15,8 @@ namespace {
 using testing::planeMap;
 using testing::smoothMap;
 
-constexpr Interpolation kSmoothMethods[] = {Interpolation::kBilinear, Interpolation::kBicubic};
+constexpr Interpolation kSmoothMethods[] = {Interpolation::kBilinear, Interpolation::kBicubic,
+                                            Interpolation::kCubicBSpline};
 
 // Central finite difference of the surface's height.
 Eigen::Vector2d finiteDifferenceGradient(const TerrainSurface& surface, const Eigen::Vector2d& p,
@@ -123,6 +124,59 @@ TEST(TerrainSurface, BicubicGradientIsContinuousAcrossCellBoundaries) {
   }
 }
 
+TEST(TerrainSurface, BSplineHessianIsContinuousAcrossCellBoundaries) {
+  ElevationMap map = smoothMap(20, 20, 1.0);
+  // A no-data cell beside the lines below: the coefficients next to it fall back to the heights,
+  // and the surface is still one C2 spline where it is defined.
+  map.elevation()(10, 10) = std::numeric_limits<float>::quiet_NaN();
+  const TerrainSurface spline(map, Interpolation::kCubicBSpline);
+  const TerrainSurface bicubic(map, Interpolation::kBicubic);
+  double bicubic_jump = 0.0;
+  for (int k = 3; k < 17; ++k) {
+    const double x = k + 0.5;  // a line of cell centres: a boundary between interpolation cells
+    for (const Eigen::Vector2d& step : {Eigen::Vector2d(1e-9, 0.0), Eigen::Vector2d(0.0, 1e-9)}) {
+      const Eigen::Vector2d at = step.x() > 0 ? Eigen::Vector2d(x, 8.3) : Eigen::Vector2d(8.3, x);
+      const SurfaceDerivatives before = *spline.sampleWithHessian(at - step);
+      const SurfaceDerivatives after = *spline.sampleWithHessian(at + step);
+      EXPECT_NEAR((before.gradient - after.gradient).norm(), 0.0, 1e-6) << at.transpose();
+      EXPECT_NEAR((before.hessian - after.hessian).norm(), 0.0, 1e-6) << at.transpose();
+      bicubic_jump = std::max(bicubic_jump, (bicubic.sampleWithHessian(at - step)->hessian -
+                                             bicubic.sampleWithHessian(at + step)->hessian)
+                                                .norm());
+    }
+  }
+  EXPECT_GT(bicubic_jump, 1e-3);  // the map is one on which C1 and C2 differ
+}
+
+TEST(TerrainSurface, BSplineReproducesCubicsAndStaysNearTheSamples) {
+  // z = cubic in x and y: reproduced exactly where the stencil stays on the grid (3 cells in).
+  ElevationMap map = planeMap(14, 16, 0.5, 0.0, 0.0, 0.0);
+  const auto cubic = [](double x, double y) {
+    return 0.02 * x * x * x - 0.1 * x * y + 0.05 * y * y * y - 0.3 * y * y + 0.7 * x;
+  };
+  for (int r = 0; r < 14; ++r) {
+    for (int c = 0; c < 16; ++c) {
+      const Eigen::Vector2d p = map.geometry().cellCenter({r, c});
+      map.elevation()(r, c) = static_cast<float>(cubic(p.x(), p.y()));
+    }
+  }
+  const TerrainSurface spline(map, Interpolation::kCubicBSpline);
+  for (double x = 1.8; x < 6.2; x += 0.23) {
+    for (double y = 1.8; y < 5.2; y += 0.29) {
+      EXPECT_NEAR(*spline.height({x, y}), cubic(x, y), 2e-5) << x << ", " << y;
+    }
+  }
+  // On a smooth map the spline stays within a millimetre of the samples.
+  const ElevationMap smooth = smoothMap(12, 9, 0.25);
+  const TerrainSurface on_smooth(smooth, Interpolation::kCubicBSpline);
+  for (int r = 0; r < 12; ++r) {
+    for (int c = 0; c < 9; ++c) {
+      EXPECT_NEAR(*on_smooth.height(smooth.geometry().cellCenter({r, c})), smooth.elevation()(r, c),
+                  1e-3);
+    }
+  }
+}
+
 TEST(TerrainSurface, NearestGradientIsTheGridsCentralDifference) {
   const ElevationMap map = smoothMap(10, 10, 0.5);
   const TerrainSurface nearest(map, Interpolation::kNearest);
@@ -137,8 +191,8 @@ TEST(TerrainSurface, NearestGradientIsTheGridsCentralDifference) {
 
 TEST(TerrainSurface, DefinedOnTheWholeExtentAndNothingOutside) {
   const ElevationMap map = smoothMap(8, 6, 1.0);
-  for (const Interpolation method :
-       {Interpolation::kNearest, Interpolation::kBilinear, Interpolation::kBicubic}) {
+  for (const Interpolation method : {Interpolation::kNearest, Interpolation::kBilinear,
+                                     Interpolation::kBicubic, Interpolation::kCubicBSpline}) {
     const TerrainSurface surface(map, method);
     // Corners and edges of the extent.
     for (const Eigen::Vector2d& p :
@@ -178,6 +232,13 @@ TEST(TerrainSurface, NoValueWhereTheStencilTouchesNoData) {
   // Two cells away: bilinear is fine, bicubic's 4 x 4 stencil still sees it.
   EXPECT_TRUE(bilinear.sample({8.0, 8.0}));
   EXPECT_FALSE(bicubic.sample({7.9, 7.9}));
+  // The spline needs the same 4 x 4 centres as bicubic (its coefficients beside the hole fall
+  // back to the heights): undefined 2 cells away, defined 3 away.
+  const TerrainSurface spline(map, Interpolation::kCubicBSpline);
+  EXPECT_EQ(spline.stencilReach(), 2);
+  EXPECT_FALSE(spline.sample({7.0, 7.0}));
+  EXPECT_FALSE(spline.sample({7.9, 7.9}));
+  EXPECT_TRUE(spline.sample({9.4, 6.5}));
   // Far away: everything is fine.
   EXPECT_TRUE(bicubic.sample({10.0, 2.0}));
   EXPECT_TRUE(nearest.sample({7.6, 6.5}));
@@ -195,6 +256,8 @@ TEST(TerrainSurface, NormalAndSlope) {
 TEST(TerrainSurface, ParsesInterpolationNames) {
   EXPECT_EQ(parseInterpolation("bicubic"), Interpolation::kBicubic);
   EXPECT_EQ(parseInterpolation("nearest"), Interpolation::kNearest);
+  EXPECT_EQ(parseInterpolation("bspline"), Interpolation::kCubicBSpline);
+  EXPECT_STREQ(interpolationName(Interpolation::kCubicBSpline), "bspline");
   EXPECT_EQ(parseInterpolation("cubic"), std::nullopt);
   EXPECT_STREQ(interpolationName(Interpolation::kBilinear), "bilinear");
 }

@@ -13,6 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "terratraj/terrain/terrain_surface.hpp"
+
 namespace terratraj::bench {
 
 /// What every suite reads. Defaults are the full suites of docs/benchmarks.md.
@@ -22,6 +24,9 @@ struct BenchmarkSettings {
   int seeds = 3;             ///< repetitions with seeds seed .. seed + seeds - 1, >= 1
   double time_limit_s = 10;  ///< planners: longest anytime budget [s] (costs at 1 s and this)
   std::filesystem::path data_dir;  ///< the real DEMs (convergence); empty: no DEM problems
+  /// The surface of the convergence and robustness sets' maps (`--interpolation`). A result file
+  /// without the key was written before it existed, on the bicubic surface.
+  terrain::Interpolation interpolation = terrain::kDefaultInterpolation;
   /// Settings as written to and read from a result file. fromJson throws InputError naming the
   /// key at fault.
   nlohmann::json toJson() const;

@@ -8,6 +8,7 @@
 #include "terratraj/terrain/elevation_map.hpp"
 #include "terratraj/terrain/raster_io.hpp"
 #include "terratraj/terrain/terrain_generator.hpp"
+#include "terratraj/terrain/terrain_surface.hpp"
 
 namespace terratraj::terrain {
 
@@ -33,6 +34,9 @@ struct TerrainSource {
   RasterLoadOptions raster;                   ///< cell, z_scale, size limit for `file`
   CoordinateFrame frame = CoordinateFrame::kLocal;
   ObstacleSource obstacles;
+  /// The continuous surface built on the heights (`terrain.interpolation`): what every
+  /// optimiser, search and check of the problem integrates on.
+  Interpolation interpolation = kDefaultInterpolation;
 };
 
 /// Builds the terrain a source describes: loads or generates the heights, then adds the lethal

@@ -10,15 +10,26 @@
 //  - kBilinear: bilinear between the four surrounding centres; C0, gradient exact
 //               inside each cell of centres.
 //  - kBicubic:  Catmull-Rom (Keys, a = -1/2) cubic convolution over a 4 x 4 stencil; C1, so
-//               optimisers see a continuous gradient. Where the stencil reaches one cell beyond
-//               the grid, the missing samples are extrapolated linearly from the two outermost
-//               ones, so that planes are reproduced exactly up to the outermost centres.
+//               optimisers see a continuous gradient, but its Hessian jumps at every line of
+//               cell centres.
+//  - kCubicBSpline: the uniform cubic B-spline whose coefficient at each centre is the local
+//               quasi-interpolant (-z[k-1] + 8 z[k] - z[k+1]) / 6 of the heights along each
+//               axis (the height itself along an axis where a neighbour is no data). C2: the
+//               gradient and Hessian are continuous, so constraints built on the gradient
+//               (pitch, roll, slope bounds) have a continuous Jacobian. Reproduces cubic
+//               polynomials exactly away from no data; at a cell centre it differs from the
+//               sample by -1/36 of the fourth difference of the heights along each axis. Defined
+//               where the 4 x 4 centres around the point are (as bicubic). The default
+//               (kDefaultInterpolation) for everything that optimises or checks a trajectory.
+// Where a stencil reaches beyond the grid, the missing samples are extrapolated linearly from
+// the two outermost ones, so that planes are reproduced exactly up to the outermost centres.
 // Border: inside the extent but beyond the outermost centres (the half-cell band on each edge)
 // the surface is extended as a constant along the outward axis (gradient 0 along it): defined
 // and continuous, though not C1 across that line. Nothing is read out of bounds.
 // Failure: std::nullopt outside the extent [0, width] x [0, height], for NaN coordinates, and
 // where the stencil touches a no-data cell (1 cell for nearest, 2 x 2 for bilinear, 4 x 4 for
-// bicubic): a no-data hole is surrounded by a band with no value, never an invented height.
+// bicubic and bspline): a no-data hole is surrounded by a band with no value, never an
+// invented height.
 
 #include <Eigen/Core>
 #include <optional>
@@ -29,9 +40,13 @@
 namespace terratraj::terrain {
 
 /// How heights are interpolated between cell centres.
-enum class Interpolation { kNearest, kBilinear, kBicubic };
+enum class Interpolation { kNearest, kBilinear, kBicubic, kCubicBSpline };
 
-/// Parses "nearest" / "bilinear" / "bicubic".
+/// The surface the optimisers, the checks and the searches use unless a problem says otherwise
+/// (`terrain.interpolation`).
+constexpr Interpolation kDefaultInterpolation = Interpolation::kCubicBSpline;
+
+/// Parses "nearest" / "bilinear" / "bicubic" / "bspline".
 std::optional<Interpolation> parseInterpolation(std::string_view name);
 /// The name parseInterpolation() accepts.
 const char* interpolationName(Interpolation method);
@@ -50,7 +65,7 @@ struct HeightSample {
 /// Height [m], gradient [m/m] and Hessian [1/m] (d2z/dx2, d2z/dxdy; d2z/dydx, d2z/dy2).
 /// The Hessian is that of the interpolant inside an interpolation cell: 0 for nearest, only the
 /// cross term for bilinear, the full cubic's for bicubic (discontinuous across cells: the
-/// bicubic surface is C1, not C2).
+/// bicubic surface is C1, not C2) and for bspline (continuous: C2).
 struct SurfaceDerivatives {
   double height = 0.0;
   Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
@@ -72,17 +87,15 @@ class TerrainSurface {
   /// Height only (same rules as sample()).
   std::optional<double> height(const Eigen::Vector2d& local) const;
   /// How many cells beyond the cell holding a point its stencil reads, in rows and in columns
-  /// (0 nearest, 1 bilinear, 2 bicubic): the surface is undefined somewhere in every cell this
-  /// close to a no-data cell, and defined everywhere in a cell farther from all of them.
+  /// (0 nearest, 1 bilinear, 2 bicubic and bspline): the surface is undefined somewhere in every
+  /// cell this close to a no-data cell, and defined everywhere in a cell farther from all of them.
   int stencilReach() const;
 
  private:
   std::optional<HeightSample> sampleNearest(double x, double y) const;
   std::optional<HeightSample> sampleBilinear(double x, double y) const;
   std::optional<HeightSample> sampleBicubic(double x, double y) const;
-  // The 4 x 4 heights from (row0, col0), extrapolated linearly one cell beyond the grid.
-  void gatherStencil(int row0, int col0, double (&z)[4][4]) const;
-  double extrapolatedHeight(int row, int col) const;
+  std::optional<HeightSample> sampleBSpline(double x, double y) const;
 
   const ElevationMap* map_;
   Interpolation method_;
