@@ -88,8 +88,15 @@ void BM_AttitudePointBilinear(benchmark::State& state) {
   const models::PointAttitudeModel model(bilinear);
   attitudeAtRandomPoses(state, model);
 }
+// On the default surface of every command (C2 B-spline).
+void BM_AttitudePointBSpline(benchmark::State& state) {
+  static const terrain::TerrainSurface spline(hills(), terrain::Interpolation::kCubicBSpline);
+  const models::PointAttitudeModel model(spline);
+  attitudeAtRandomPoses(state, model);
+}
 BENCHMARK(BM_AttitudePoint);
 BENCHMARK(BM_AttitudePointBilinear);
+BENCHMARK(BM_AttitudePointBSpline);
 BENCHMARK(BM_AttitudeFourWheel);
 BENCHMARK(BM_AttitudeRockerBogieCold);
 BENCHMARK(BM_AttitudeRockerBogieWarm);

@@ -102,6 +102,18 @@ void BM_SampleBicubicAlongPath(benchmark::State& state) {
 }
 BENCHMARK(BM_SampleBicubicAlongPath);
 
+void BM_SampleBSplineAlongPath(benchmark::State& state) {
+  const ElevationMap& map = hills1024();
+  const TerrainSurface surface(map, Interpolation::kCubicBSpline);
+  double x = 1.0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(surface.sample({x, 0.37 * x + 1.0}));
+    x += 0.01;
+    if (x > 150.0) x = 1.0;
+  }
+}
+BENCHMARK(BM_SampleBSplineAlongPath);
+
 void BM_TangentPlanePatch(benchmark::State& state) {
   const ElevationMap& map = hills1024();
   const TerrainSurface surface(map, Interpolation::kBicubic);

@@ -172,8 +172,13 @@ nlohmann::json runInWorkers(const BenchOptions& options, const std::vector<int>&
   }
   nlohmann::json rows = nlohmann::json::array();
   if (failures.empty()) {
+    const nlohmann::json settings = options.settings.toJson();
     for (const fs::path& output : outputs) {
       nlohmann::json part = readResult(output);
+      if (part["settings"] != settings) {  // a worker must run what the parent was asked
+        failures += " " + output.filename().string() + " ran with settings " +
+                    part["settings"].dump() + ", not " + settings.dump() + ";";
+      }
       for (nlohmann::json& row : part["rows"]) rows.push_back(std::move(row));
     }
   }

@@ -19,6 +19,7 @@
 #include "terratraj/apps/bench_command.hpp"
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/bench/benchmark_suite.hpp"
+#include "terratraj/terrain/input_error.hpp"
 
 namespace terratraj::apps {
 using bench::distributionJson;
@@ -85,6 +86,7 @@ TEST_F(BenchCommandTest, ConvergenceRowsAreReSimulatedResults) {
   EXPECT_TRUE(result["machine"].contains("commit"));
   EXPECT_GE(result["machine"]["cores"].get<int>(), 1);
   EXPECT_EQ(result["settings"]["quick"], true);
+  EXPECT_EQ(result["settings"]["interpolation"], "bspline");  // every command's surface
   EXPECT_NE(r.err.find("[6/6] flat_fan/0/collocation"), std::string::npos) << r.err;
 }
 
@@ -167,6 +169,8 @@ TEST_F(BenchCommandTest, WorkersRunTheCasesInSeparateProcesses) {
   // robustness turn (ceres).
   options.shard = "1/29";
   options.jobs = 2;
+  // Workers run with the parent's settings (they check, and the parent compares their files).
+  options.settings.interpolation = terrain::Interpolation::kBicubic;
   options.executable = TERRATRAJ_EXECUTABLE;
   options.out = path("w.json");
   std::ostringstream out, err;
@@ -182,6 +186,7 @@ TEST_F(BenchCommandTest, WorkersRunTheCasesInSeparateProcesses) {
   EXPECT_EQ(result["rows"][4]["case"], 116);
   EXPECT_EQ(result["rows"][4]["family"], "robustness");
   EXPECT_EQ(result["processes"], 2);
+  EXPECT_EQ(result["settings"]["interpolation"], "bicubic");
   for (const nlohmann::json& row : result["rows"]) {
     EXPECT_EQ(row["status"], "converged") << row.dump();
   }
@@ -222,6 +227,26 @@ TEST_F(BenchCommandTest, BadInputIsNamedWithExitTwo) {
   const testing::CliRun r = run({"bench", "merge", path("not.json")});
   EXPECT_EQ(r.status, kExitBadInput);
   EXPECT_NE(r.err.find("not.json"), std::string::npos) << r.err;
+}
+
+// The surface is part of a result's settings; a file written before the key existed was measured
+// on the bicubic surface, and says so when read back.
+TEST(BenchSettings, TheSurfaceRoundTripsAndOldFilesReadAsBicubic) {
+  BenchmarkSettings settings;
+  EXPECT_EQ(settings.interpolation, terrain::Interpolation::kCubicBSpline);
+  settings.interpolation = terrain::Interpolation::kBicubic;
+  nlohmann::json json = settings.toJson();
+  EXPECT_EQ(json["interpolation"], "bicubic");
+  EXPECT_EQ(BenchmarkSettings::fromJson(json, "a.json").interpolation,
+            terrain::Interpolation::kBicubic);
+  json["interpolation"] = "bspline";
+  EXPECT_EQ(BenchmarkSettings::fromJson(json, "a.json").interpolation,
+            terrain::Interpolation::kCubicBSpline);
+  json.erase("interpolation");
+  EXPECT_EQ(BenchmarkSettings::fromJson(json, "old.json").interpolation,
+            terrain::Interpolation::kBicubic);
+  json["interpolation"] = "smooth";
+  EXPECT_THROW(BenchmarkSettings::fromJson(json, "a.json"), terratraj::InputError);
 }
 
 // A figure that is not defined (no converged run) is "n/a", never 0.
