@@ -90,28 +90,23 @@ BENCHMARK(BM_SampleBicubicWithHessian);
 BENCHMARK(BM_SampleBSplineWithHessian);
 
 // Consecutive queries along a path, the access pattern of an integrator.
-void BM_SampleBicubicAlongPath(benchmark::State& state) {
+void sampleAlongPath(benchmark::State& state, Interpolation method) {
   const ElevationMap& map = hills1024();
-  const TerrainSurface surface(map, Interpolation::kBicubic);
+  const TerrainSurface surface(map, method);
   double x = 1.0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(surface.sample({x, 0.37 * x + 1.0}));
     x += 0.01;
     if (x > 150.0) x = 1.0;
   }
+}
+void BM_SampleBicubicAlongPath(benchmark::State& state) {
+  sampleAlongPath(state, Interpolation::kBicubic);
+}
+void BM_SampleBSplineAlongPath(benchmark::State& state) {
+  sampleAlongPath(state, Interpolation::kCubicBSpline);
 }
 BENCHMARK(BM_SampleBicubicAlongPath);
-
-void BM_SampleBSplineAlongPath(benchmark::State& state) {
-  const ElevationMap& map = hills1024();
-  const TerrainSurface surface(map, Interpolation::kCubicBSpline);
-  double x = 1.0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(surface.sample({x, 0.37 * x + 1.0}));
-    x += 0.01;
-    if (x > 150.0) x = 1.0;
-  }
-}
 BENCHMARK(BM_SampleBSplineAlongPath);
 
 void BM_TangentPlanePatch(benchmark::State& state) {

@@ -81,21 +81,6 @@ double prefiltered(double before, double at, double after) {
   return (8.0 * at - before - after) / 6.0;
 }
 
-// The spline's 4 x 4 coefficients at the centres (row0 + 1 .., col0 + 1 ..) from the 6 x 6
-// heights from (row0, col0): along x, then along y. A coefficient depends only on the heights
-// around its own centre, so every stencil computes it alike and the surface is one C2 spline.
-void bSplineCoefficients(const double (&z)[6][6], double (&c)[4][4]) {
-  double along_x[6][4];
-  for (int i = 0; i < 6; ++i) {
-    for (int j = 0; j < 4; ++j) along_x[i][j] = prefiltered(z[i][j], z[i][j + 1], z[i][j + 2]);
-  }
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      c[i][j] = prefiltered(along_x[i][j], along_x[i + 1][j], along_x[i + 2][j]);
-    }
-  }
-}
-
 std::optional<HeightSample> finiteOrNothing(double height, double gx, double gy) {
   if (std::isnan(height) || std::isnan(gx) || std::isnan(gy)) return std::nullopt;
   return HeightSample{height, Eigen::Vector2d(gx, gy)};
@@ -152,6 +137,42 @@ void gatherStencil(const float* heights, int rows, int cols, int row0, int col0,
   }
 }
 
+// The spline's coefficient at every centre and at the border of one beyond the grid,
+// (rows + 2) x (cols + 2) row-major: along x, then along y, through the linearly extrapolated
+// heights. A coefficient depends only on the heights around its own centre (3 x 3), so the
+// surface is one C2 spline, and it is NaN only where its own centre is no data.
+std::vector<double> bSplineCoefficientGrid(const float* heights, int rows, int cols) {
+  const int padded_cols = cols + 2;
+  // Along x, for the rows -2 .. rows + 1 (padded by two) and the columns -1 .. cols.
+  std::vector<double> along_x(static_cast<std::size_t>(rows + 4) * padded_cols);
+  for (int r = -2; r < rows + 2; ++r) {
+    double* out = along_x.data() + static_cast<std::size_t>(r + 2) * padded_cols;
+    for (int c = -1; c <= cols; ++c) {
+      out[c + 1] = prefiltered(extrapolatedHeight(heights, rows, cols, r, c - 1),
+                               extrapolatedHeight(heights, rows, cols, r, c),
+                               extrapolatedHeight(heights, rows, cols, r, c + 1));
+    }
+  }
+  std::vector<double> grid(static_cast<std::size_t>(rows + 2) * padded_cols);
+  for (int r = -1; r <= rows; ++r) {
+    const double* below = along_x.data() + static_cast<std::size_t>(r + 1) * padded_cols;
+    const double* at = below + padded_cols;
+    const double* above = at + padded_cols;
+    double* out = grid.data() + static_cast<std::size_t>(r + 1) * padded_cols;
+    for (int j = 0; j < padded_cols; ++j) out[j] = prefiltered(below[j], at[j], above[j]);
+  }
+  return grid;
+}
+
+// The 4 x 4 coefficients from the padded grid's (row, col).
+void gatherCoefficients(const std::vector<double>& grid, int padded_cols, int row, int col,
+                        double (&c)[4][4]) {
+  for (int i = 0; i < 4; ++i) {
+    const double* src = grid.data() + static_cast<std::size_t>(row + i) * padded_cols + col;
+    for (int j = 0; j < 4; ++j) c[i][j] = src[j];
+  }
+}
+
 // Height, gradient and Hessian of a tensor-product surface sum_ij wy[i] wx[j] z[i][j], given
 // each axis's weights and their first and second derivatives in the fraction, and
 // d(fraction)/d(coordinate) per axis [1/m].
@@ -179,6 +200,25 @@ SurfaceDerivatives tensorDerivatives(const double (&z)[N][N], const double* wx, 
   d.gradient = Eigen::Vector2d(hx * du, hy * dv);
   d.hessian << hxx * du * du, hxy * du * dv, hxy * du * dv, hyy * dv * dv;
   return d;
+}
+
+// Height and gradient of the 4 x 4 tensor-product surface sum_ij wy[i] wx[j] z[i][j] (the
+// cheaper half of tensorDerivatives); std::nullopt where a sample is no data.
+std::optional<HeightSample> tensorSample(const double (&z)[4][4], const double* wx,
+                                         const double* dwx, const double* wy, const double* dwy,
+                                         double du, double dv) {
+  double height = 0.0, dz_dtx = 0.0, dz_dty = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    double value = 0.0, slope = 0.0;
+    for (int j = 0; j < 4; ++j) {
+      value += wx[j] * z[i][j];
+      slope += dwx[j] * z[i][j];
+    }
+    height += wy[i] * value;
+    dz_dtx += wy[i] * slope;
+    dz_dty += dwy[i] * value;
+  }
+  return finiteOrNothing(height, dz_dtx * du, dz_dty * dv);
 }
 
 }  // namespace
@@ -241,7 +281,12 @@ TerrainSurface::TerrainSurface(const ElevationMap& map, Interpolation method)
       heights_(map.elevation().values().data()),
       rows_(map.geometry().rows),
       cols_(map.geometry().cols),
-      inv_cell_(1.0 / map.geometry().cell) {}
+      inv_cell_(1.0 / map.geometry().cell) {
+  if (method_ == Interpolation::kCubicBSpline) {
+    coefficients_ =
+        std::make_shared<const std::vector<double>>(bSplineCoefficientGrid(heights_, rows_, cols_));
+  }
+}
 
 std::optional<HeightSample> TerrainSurface::sample(const Eigen::Vector2d& local) const {
   const double x = local.x();
@@ -289,10 +334,8 @@ std::optional<SurfaceDerivatives> TerrainSurface::sampleWithHessian(
   if (method_ == Interpolation::kCubicBSpline) {
     const SplineBasis wx = bSplineBasis(ax.t);
     const SplineBasis wy = bSplineBasis(ay.t);
-    double z[6][6];
-    gatherStencil(heights_, rows_, cols_, ay.index - 2, ax.index - 2, z);
-    double c[4][4];
-    bSplineCoefficients(z, c);
+    double c[4][4];  // the centres from (ay.index - 1, ax.index - 1): padded (ay.index, ax.index)
+    gatherCoefficients(*coefficients_, cols_ + 2, ay.index, ax.index, c);
     d = tensorDerivatives(c, wx.w, wx.dw, wx.d2w, wy.w, wy.dw, wy.d2w, ax.dt_dcoord, ay.dt_dcoord);
   } else {
     const CubicWeights wx = catmullRomWeights(ax.t);
@@ -344,18 +387,7 @@ std::optional<HeightSample> TerrainSurface::sampleBicubic(double x, double y) co
   const CubicWeights wy = catmullRomWeights(ay.t);
   double z[4][4];
   gatherStencil(heights_, rows_, cols_, ay.index - 1, ax.index - 1, z);
-  double height = 0.0, dz_dtx = 0.0, dz_dty = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    double value = 0.0, slope = 0.0;
-    for (int j = 0; j < 4; ++j) {
-      value += wx.w[j] * z[i][j];
-      slope += wx.dw[j] * z[i][j];
-    }
-    height += wy.w[i] * value;
-    dz_dtx += wy.w[i] * slope;
-    dz_dty += wy.dw[i] * value;
-  }
-  return finiteOrNothing(height, dz_dtx * ax.dt_dcoord, dz_dty * ay.dt_dcoord);
+  return tensorSample(z, wx.w, wx.dw, wy.w, wy.dw, ax.dt_dcoord, ay.dt_dcoord);
 }
 
 std::optional<HeightSample> TerrainSurface::sampleBSpline(double x, double y) const {
@@ -363,22 +395,9 @@ std::optional<HeightSample> TerrainSurface::sampleBSpline(double x, double y) co
   const AxisPosition ay = locateOnAxis(y, inv_cell_, rows_);
   const SplineBasis wx = bSplineBasis(ax.t);
   const SplineBasis wy = bSplineBasis(ay.t);
-  double z[6][6];
-  gatherStencil(heights_, rows_, cols_, ay.index - 2, ax.index - 2, z);
-  double c[4][4];
-  bSplineCoefficients(z, c);
-  double height = 0.0, dz_dtx = 0.0, dz_dty = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    double value = 0.0, slope = 0.0;
-    for (int j = 0; j < 4; ++j) {
-      value += wx.w[j] * c[i][j];
-      slope += wx.dw[j] * c[i][j];
-    }
-    height += wy.w[i] * value;
-    dz_dtx += wy.w[i] * slope;
-    dz_dty += wy.dw[i] * value;
-  }
-  return finiteOrNothing(height, dz_dtx * ax.dt_dcoord, dz_dty * ay.dt_dcoord);
+  double c[4][4];  // the centres from (ay.index - 1, ax.index - 1): padded (ay.index, ax.index)
+  gatherCoefficients(*coefficients_, cols_ + 2, ay.index, ax.index, c);
+  return tensorSample(c, wx.w, wx.dw, wy.w, wy.dw, ax.dt_dcoord, ay.dt_dcoord);
 }
 
 }  // namespace terratraj::terrain

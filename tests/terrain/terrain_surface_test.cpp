@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -175,6 +176,68 @@ TEST(TerrainSurface, BSplineReproducesCubicsAndStaysNearTheSamples) {
                   1e-3);
     }
   }
+}
+
+// The spline written another way: sum over the centres of coefficient x the centred cubic
+// B-spline kernel per axis, each coefficient the quasi-interpolant of the (linearly
+// extrapolated) heights around its centre, the height where a neighbour is no data.
+double bSplineReference(const ElevationMap& map, double x, double y) {
+  const GridGeometry& g = map.geometry();
+  const auto z = [&](int r, int c) {
+    const auto along_col = [&](int row) {  // the row's height at column c, extrapolated
+      const int edge = std::clamp(c, 0, g.cols - 1);
+      const int inner = c < 0 ? 1 : g.cols - 2;
+      const double at_edge = map.elevation()(row, edge);
+      return c == edge ? at_edge
+                       : at_edge + std::abs(c - edge) * (at_edge - map.elevation()(row, inner));
+    };
+    const int edge = std::clamp(r, 0, g.rows - 1);
+    const int inner = r < 0 ? 1 : g.rows - 2;
+    return r == edge ? along_col(r)
+                     : along_col(edge) + std::abs(r - edge) * (along_col(edge) - along_col(inner));
+  };
+  const auto quasi = [](double before, double at, double after) {
+    return std::isnan(before) || std::isnan(after) ? at : (8.0 * at - before - after) / 6.0;
+  };
+  const auto along_x = [&](int r, int c) { return quasi(z(r, c - 1), z(r, c), z(r, c + 1)); };
+  const auto kernel = [](double d) {
+    d = std::abs(d);
+    if (d >= 2.0) return 0.0;
+    if (d >= 1.0) return (2.0 - d) * (2.0 - d) * (2.0 - d) / 6.0;
+    return (4.0 - 6.0 * d * d + 3.0 * d * d * d) / 6.0;
+  };
+  double sum = 0.0;
+  for (int r = -1; r <= g.rows; ++r) {
+    for (int c = -1; c <= g.cols; ++c) {
+      const double w = kernel(x / g.cell - 0.5 - c) * kernel(y / g.cell - 0.5 - r);
+      if (w == 0.0) continue;
+      sum += w * quasi(along_x(r - 1, c), along_x(r, c), along_x(r + 1, c));
+    }
+  }
+  return sum;
+}
+
+TEST(TerrainSurface, BSplineMatchesItsDefinitionOnTheBorderAndBesideNoData) {
+  ElevationMap map = smoothMap(11, 13, 0.5);
+  map.elevation()(5, 9) = std::numeric_limits<float>::quiet_NaN();
+  const TerrainSurface spline(map, Interpolation::kCubicBSpline);
+  const TerrainSurface copy = spline;  // copies share the coefficients
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> ux(0.25, 6.25), uy(0.25, 5.25);
+  int defined = 0;
+  for (int n = 0; n < 400; ++n) {
+    const Eigen::Vector2d p(ux(rng), uy(rng));
+    const std::optional<HeightSample> s = copy.sample(p);
+    const double reference = bSplineReference(map, p.x(), p.y());
+    if (!s) {
+      EXPECT_TRUE(std::isnan(reference)) << p.transpose();
+      continue;
+    }
+    ++defined;
+    EXPECT_NEAR(s->height, reference, 1e-9) << p.transpose();
+    EXPECT_NEAR(spline.sampleWithHessian(p)->height, reference, 1e-9) << p.transpose();
+  }
+  EXPECT_GT(defined, 300);
 }
 
 TEST(TerrainSurface, NearestGradientIsTheGridsCentralDifference) {
