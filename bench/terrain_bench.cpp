@@ -132,6 +132,13 @@ void BM_LoadGeoTiff1024(benchmark::State& state) {
 }
 BENCHMARK(BM_LoadGeoTiff1024)->Unit(benchmark::kMillisecond);
 
+// Building the default surface: the spline's coefficient grid over the whole map.
+void BM_BuildBSplineSurface1024(benchmark::State& state) {
+  const ElevationMap& map = hills1024();
+  for (auto _ : state) benchmark::DoNotOptimize(TerrainSurface(map, Interpolation::kCubicBSpline));
+}
+BENCHMARK(BM_BuildBSplineSurface1024)->Unit(benchmark::kMillisecond);
+
 void BM_GenerateHills1024(benchmark::State& state) {
   GeneratorOptions options;
   options.kind = TerrainKind::kHills;

@@ -143,15 +143,25 @@ void gatherStencil(const float* heights, int rows, int cols, int row0, int col0,
 // surface is one C2 spline, and it is NaN only where its own centre is no data.
 std::vector<double> bSplineCoefficientGrid(const float* heights, int rows, int cols) {
   const int padded_cols = cols + 2;
-  // Along x, for the rows -2 .. rows + 1 (padded by two) and the columns -1 .. cols.
+  // Along x, for the rows -2 .. rows + 1 (padded by two) and the columns -1 .. cols; the heights
+  // read directly inside the grid, extrapolated on its border.
   std::vector<double> along_x(static_cast<std::size_t>(rows + 4) * padded_cols);
+  const auto z = [&](int r, int c) {
+    return r >= 0 && r < rows && c >= 0 && c < cols
+               ? static_cast<double>(heights[static_cast<std::size_t>(r) * cols + c])
+               : extrapolatedHeight(heights, rows, cols, r, c);
+  };
   for (int r = -2; r < rows + 2; ++r) {
     double* out = along_x.data() + static_cast<std::size_t>(r + 2) * padded_cols;
-    for (int c = -1; c <= cols; ++c) {
-      out[c + 1] = prefiltered(extrapolatedHeight(heights, rows, cols, r, c - 1),
-                               extrapolatedHeight(heights, rows, cols, r, c),
-                               extrapolatedHeight(heights, rows, cols, r, c + 1));
+    if (r >= 0 && r < rows) {
+      const float* row = heights + static_cast<std::size_t>(r) * cols;
+      for (int c = 1; c + 1 < cols; ++c) out[c + 1] = prefiltered(row[c - 1], row[c], row[c + 1]);
+      for (const int c : {-1, 0, cols - 1, cols}) {
+        out[c + 1] = prefiltered(z(r, c - 1), z(r, c), z(r, c + 1));
+      }
+      continue;
     }
+    for (int c = -1; c <= cols; ++c) out[c + 1] = prefiltered(z(r, c - 1), z(r, c), z(r, c + 1));
   }
   std::vector<double> grid(static_cast<std::size_t>(rows + 2) * padded_cols);
   for (int r = -1; r <= rows; ++r) {
