@@ -77,6 +77,7 @@ nlohmann::json refineOne(const bench::BenchmarkWorld& w, const refine::Candidate
   out["reason"] = r.reason;
   out["method"] = refine::refineMethodName(r.method);
   out["iterations"] = r.iterations;
+  out["time_limit_reached"] = r.time_limit_reached;
   out["intervals"] = r.intervals;
   out["coarse_intervals"] = r.coarse_intervals;
   out["coarse_iterations"] = r.coarse_iterations;

@@ -220,6 +220,7 @@ void CandidateRefiner::solveParametric(const TrajectoryFigures& before, const De
   out.verified = out.parametric->verified;
   out.history = out.parametric->solver.history;
   out.iterations = out.parametric->solver.iterations;
+  out.time_limit_reached = out.time_limit_reached || out.parametric->time_limit_reached;
   accept(out.parametric->status, out.parametric->reason, out.parametric->verdict, before, out);
 }
 
@@ -294,8 +295,10 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   if (out.method == RefineMethod::kNewton || out.method == RefineMethod::kIpopt) {
     solveParametric(before, solver_deadline, out);
     const bool worse = worseThanCandidate(before, out);
-    if ((out.status == ocp::SolveStatus::kConverged && !worse) ||
-        options_.method != RefineMethod::kAuto || solver_deadline.over()) {
+    const bool done = out.status == ocp::SolveStatus::kConverged && !worse;
+    if (done || options_.method != RefineMethod::kAuto || solver_deadline.over()) {
+      // kAuto's collocation skipped for lack of time.
+      if (!done && options_.method == RefineMethod::kAuto) out.time_limit_reached = true;
       return finishRefinement(before, out, started);
     }
     out.method_rule +=
@@ -310,8 +313,10 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   transcribe(start_guess, before, clearance_, solver_deadline, out);
   // Interior-point iterates may pass through a small obstacle: once the class is lost, solve
   // again from the candidate inside a corridor around it, which the clearance constraint keeps.
-  if (out.refined_figures && !out.homotopy_kept && options_.corridor_radius_m > 0.0 &&
-      !solver_deadline.over()) {
+  const bool class_retry =
+      out.refined_figures && !out.homotopy_kept && options_.corridor_radius_m > 0.0;
+  if (class_retry && solver_deadline.over()) out.time_limit_reached = true;  // skipped for time
+  if (class_retry && !solver_deadline.over()) {
     const terrain::ClearanceMap corridor(corridorMap(out.candidate));
     out.corridor_radius_m = options_.corridor_radius_m;
     out.refined_figures.reset();
@@ -400,6 +405,7 @@ std::optional<ocp::TranscriptionGuess> CandidateRefiner::solveCoarse(
   out.coarse_intervals = coarse_intervals;
   out.coarse_iterations = solution.result.iterations;
   out.coarse_status = solution.result.status;
+  out.time_limit_reached = out.time_limit_reached || solution.result.time_limit_reached;
   if (solution.result.status != ocp::SolveStatus::kConverged) return std::nullopt;
   // A coarse solution can cut across ground its points never touched (a slope beyond the
   // Segway's drivable one between two points on a DEM at rover scale, case 405 of
@@ -495,6 +501,7 @@ void CandidateRefiner::transcribe(const ocp::TranscriptionGuess& guess,
     out.history.push_back(r);
   }
   out.iterations += result.iterations;
+  out.time_limit_reached = out.time_limit_reached || result.time_limit_reached;
   out.transcription = result.solution;
   out.intervals = static_cast<int>(result.solution.mesh.size()) - 1;
   out.margin_rounds = static_cast<int>(result.rounds.size());

@@ -92,7 +92,7 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
   out.history = std::move(r.history);
   out.iterations = r.iterations;
   out.time_limit_reached = out.status != ocp::SolveStatus::kConverged &&
-                           ((r.transcription && r.transcription->result.time_limit_reached) ||
+                           (r.time_limit_reached ||
                             (refine.time_limit_s && r.solve_time_ms >= 1e3 * *refine.time_limit_s));
   if (r.transcription) {
     ocp::VerifiedTranscription t;

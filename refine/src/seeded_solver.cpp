@@ -452,8 +452,9 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
     bool unfinished = false;
     if (seed == nullptr) {
       SeededSolution found = solveFromSearch(vehicle, problem, *map, options, within.left(), why);
-      // Cut when its PRM or a solve says the clock stopped it, or its whole budget is gone (the
-      // refinement does not flag a step it skipped for lack of time). A chain that ended on its own
+      // Cut when its PRM or its refinement says the clock stopped it (a solve, or a step skipped
+      // for lack of time: RefinementResult::time_limit_reached), or its whole budget is gone. A
+      // chain that ended on its own
       // ends the same again (the PRM's seed, the deterministic solvers): not retried. Until
       // 2026-12-07 any chain that used 80 % of its budget was retried, repeating a 25 s refinement
       // to the same verdict on davosdorf's Segway 3.

@@ -327,6 +327,33 @@ TEST(CandidateRefiner, AutoPicksNewtonForShortClearPathsAndCollocationOtherwise)
   ASSERT_TRUE(r.parametric.has_value());
 }
 
+// The clock says when it decided: a refinement it cut (the parametric solve, the collocation
+// that auto would try next, a collocation's rounds) reports time_limit_reached; one that ended
+// on its own does not.
+TEST(CandidateRefiner, SaysWhenTheClockEndedOrSkippedASolve) {
+  auto world = testing::worldOn(testing::flatMap(64, 64), {4.0, 8.0}, {10.0, 9.0});
+  const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);
+  const ReferenceFrames frames = framesOf(*world);
+  const models::Trajectory s_path = xyPath({{4.0, 8.0}, {7.0, 8.3}, {10.0, 9.0}});
+  const RefinementResult ample = CandidateRefiner(world->problem, bvp, frames).refine(s_path);
+  EXPECT_EQ(ample.status, ocp::SolveStatus::kConverged) << ample.reason;
+  EXPECT_FALSE(ample.time_limit_reached);
+
+  RefinementOptions none;
+  none.time_limit_s = 0.0;
+  const RefinementResult cut = CandidateRefiner(world->problem, bvp, frames, none).refine(s_path);
+  EXPECT_NE(cut.status, ocp::SolveStatus::kConverged);
+  EXPECT_TRUE(cut.time_limit_reached) << cut.method_rule << ": " << cut.reason;
+  EXPECT_EQ(cut.method, RefineMethod::kIpopt) << cut.method_rule;  // collocation skipped
+
+  RefinementOptions collocation = none;
+  collocation.method = RefineMethod::kCollocation;
+  const RefinementResult cut_collocation =
+      CandidateRefiner(world->problem, bvp, frames, collocation).refine(s_path);
+  EXPECT_NE(cut_collocation.status, ocp::SolveStatus::kConverged);
+  EXPECT_TRUE(cut_collocation.time_limit_reached) << cut_collocation.reason;
+}
+
 TEST(CandidateRefiner, UnusableCandidatesAreErrorsNamingTheSample) {
   auto world = testing::worldOn(testing::flatMap(64, 64), {4.0, 8.0}, {10.0, 8.0});
   const ocp::BoundaryValueProblem bvp = bvpOf(world->problem);

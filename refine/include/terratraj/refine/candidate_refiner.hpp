@@ -92,9 +92,14 @@ struct RefinementResult {
   int margin_rounds = 0;           ///< fine direct transcription solves (1 + margin retries used)
   double speed_margin_used = 0.0;  ///< the margins of the last solve (fractions)
   double limit_margin_used = 0.0;
-  double clearance_used_m = 0.0;              ///< the clearance constraint (transcription)
-  int iterations = 0;                         ///< solver iterations (all mesh rounds)
-  double solve_time_ms = 0.0;                 ///< whole refinement [ms]
+  double clearance_used_m = 0.0;  ///< the clearance constraint (transcription)
+  int iterations = 0;             ///< solver iterations (all mesh rounds)
+  double solve_time_ms = 0.0;     ///< whole refinement [ms]
+  /// The clock (RefinementOptions::time_limit_s) or a stop ended a solve (the parametric one,
+  /// the coarse mesh, a round of the fine one) or kept a step from running (kAuto's collocation
+  /// after a parametric solve that failed, the class retry in a corridor): with more time the
+  /// result may differ. False: the same options give the same result.
+  bool time_limit_reached = false;
   std::vector<ocp::IterationRecord> history;  ///< per iteration: terminal error, cost
   ocp::VerifiedTrajectory verified;           ///< the independent re-simulation
   models::TrajectoryVerdict verdict;          ///< the verdict on verified.trajectory
