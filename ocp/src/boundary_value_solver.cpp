@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "terratraj/ocp/ceres_solver.hpp"
+#include "terratraj/ocp/deadline.hpp"
 #include "terratraj/ocp/ipopt_solver.hpp"
 #include "terratraj/ocp/newton_solver.hpp"
 #include "terratraj/ocp/parametric_controls.hpp"
@@ -32,6 +33,7 @@ SolveResult runSolver(const models::TerrainFollowingModel& vehicle,
   newton.criteria = options.criteria;
   newton.max_iterations = options.max_iterations;
   newton.time_limit_s = options.time_limit_s;
+  newton.stop = options.stop;
   switch (options.method) {
     case BoundaryValueMethod::kNewton: {
       ParametricTrajectoryModel model(vehicle, problem, model_options);
@@ -57,6 +59,7 @@ SolveResult runSolver(const models::TerrainFollowingModel& vehicle,
       ipopt.criteria = options.criteria;
       ipopt.max_iterations = options.max_iterations;
       ipopt.time_limit_s = options.time_limit_s;
+      ipopt.stop = options.stop;
       ipopt.path_points = options.path_points;
       if (options.max_final_time_ratio > 0.0) {
         ipopt.max_final_time_s =
@@ -70,6 +73,7 @@ SolveResult runSolver(const models::TerrainFollowingModel& vehicle,
       ceres.criteria = options.criteria;
       ceres.max_iterations = options.max_iterations;
       ceres.time_limit_s = options.time_limit_s;
+      ceres.stop = options.stop;
       return solveCeres(model, guess.q, ceres);
     }
   }
@@ -97,6 +101,7 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
                                          const BoundaryValueOptions& options,
                                          const terrain::ElevationMap* map) {
   const Clock::time_point started = Clock::now();
+  const Deadline clock(started, options.time_limit_s, options.stop);  // or a stop
   BoundaryValueSolution solution;
   solution.solver.method = boundaryValueMethodName(options.method);
   const auto elapsed_ms = [&] {
@@ -109,10 +114,7 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
     if (!timed) solution.total_time_ms = elapsed_ms();
     // Whatever step the clock stopped (the initial guess's integration included), a result
     // short of converged at the time limit is unfinished.
-    if (status != SolveStatus::kConverged && options.time_limit_s &&
-        elapsed_ms() >= 1e3 * *options.time_limit_s) {
-      solution.time_limit_reached = true;
-    }
+    if (status != SolveStatus::kConverged && clock.over()) solution.time_limit_reached = true;
     return solution;
   };
   if (startMeetsGoal(problem, options.criteria)) {
@@ -169,10 +171,10 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
   const auto verify = [&] {
     // A solve stopped by the time limit is not re-simulated (the re-simulation of a wild
     // iterate can take seconds): its status already says why it ended.
-    if (solution.solver.status != SolveStatus::kConverged && options.time_limit_s &&
-        elapsed_ms() >= 1e3 * *options.time_limit_s) {
+    if (solution.solver.status != SolveStatus::kConverged && clock.over()) {
       solution.verified = VerifiedTrajectory();
-      solution.verified.message = "not re-simulated: the time limit was reached";
+      solution.verified.message =
+          "not re-simulated: the time limit was reached or a stop requested";
       return;
     }
     const double before = elapsed_ms();
@@ -192,7 +194,7 @@ BoundaryValueSolution solveBoundaryValue(const models::TerrainFollowingModel& ve
          solution.solver.status == SolveStatus::kConverged && solution.verified.ok &&
          solution.verdict.failure == models::VerdictFailure::kBreaksLimits &&
          solution.path_points < options.max_path_points) {
-    if (options.time_limit_s && elapsed_ms() >= 1e3 * *options.time_limit_s) {
+    if (clock.over()) {
       solution.time_limit_reached = true;
       break;
     }

@@ -96,6 +96,18 @@ std::optional<std::string> optionsError(const CeresOptions& options) {
   return std::nullopt;
 }
 
+// Ends an inner solve when a stop is requested (SIGINT).
+class StopOnRequest : public ceres::IterationCallback {
+ public:
+  explicit StopOnRequest(const std::atomic<bool>* stop) : stop_(stop) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    return stop_ != nullptr && stop_->load() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::atomic<bool>* stop_;
+};
+
 // The inner (trust-region) solves' settings.
 ceres::Solver::Options innerSolverOptions(const ConvergenceCriteria& criteria) {
   ceres::Solver::Options solver_options;
@@ -165,6 +177,8 @@ SolveResult runCeres(ParametricTrajectoryModel& model, const Eigen::VectorXd& q0
   problem.SetParameterLowerBound(q.data(), itf, kMinFinalTime);
 
   ceres::Solver::Options solver_options = innerSolverOptions(criteria);
+  StopOnRequest stop_on_request(options.stop);
+  if (options.stop != nullptr) solver_options.callbacks.push_back(&stop_on_request);
 
   int used = 0;
   for (int outer = 1; outer <= options.max_outer_iterations; ++outer) {
@@ -174,11 +188,9 @@ SolveResult runCeres(ParametricTrajectoryModel& model, const Eigen::VectorXd& q0
           "max_iterations = " + std::to_string(options.max_iterations) + " Ceres iterations used");
     }
     double remaining_s = 1e9;
-    if (options.time_limit_s) {
-      remaining_s = *options.time_limit_s - accounting.elapsedSeconds();
-      if (remaining_s <= 0.0) {
-        return accounting.finishOnTimeLimit(*options.time_limit_s);
-      }
+    if (options.time_limit_s) remaining_s = *options.time_limit_s - accounting.elapsedSeconds();
+    if (remaining_s <= 0.0 || accounting.pastTimeLimit(std::nullopt, options.stop)) {
+      return accounting.finishOnTimeLimit(options.time_limit_s, options.stop);
     }
     solver_options.max_num_iterations = options.max_iterations - used;
     solver_options.max_solver_time_in_seconds = remaining_s;
@@ -187,6 +199,9 @@ SolveResult runCeres(ParametricTrajectoryModel& model, const Eigen::VectorXd& q0
     ceres::Solve(solver_options, &problem, &summary);
     used += summary.num_successful_steps + summary.num_unsuccessful_steps;
     result.iterations = used;
+    if (accounting.pastTimeLimit(std::nullopt, options.stop)) {
+      return accounting.finishOnTimeLimit(options.time_limit_s, options.stop);
+    }
     if (summary.termination_type == ceres::FAILURE ||
         summary.termination_type == ceres::USER_FAILURE) {
       const std::string message =

@@ -223,6 +223,10 @@ class IpoptTranscription final : public Ipopt::TNLP {
         diverged_ = true;  // blown up: its factorisations slow to seconds
         return false;
       }
+      if (options_.stop != nullptr && options_.stop->load()) {
+        timed_out_ = true;  // stopped on request: as at the time limit
+        return false;
+      }
       if (options_.time_limit_s) {
         // Stop when the next iteration (as long as the last one) would end past the limit.
         const double elapsed = secondsSince(started_);
@@ -350,8 +354,9 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
   } else {
     out.lambda = Eigen::VectorXd::Zero(nlp.constraintCount());
   }
-  detail::IpoptOutcome outcome = detail::ipoptOutcome(status, adapter->timedOut(),
-                                                      options.max_iterations, options.time_limit_s);
+  detail::IpoptOutcome outcome =
+      detail::ipoptOutcome(status, adapter->timedOut(), options.max_iterations,
+                           options.time_limit_s, options.stop != nullptr && options.stop->load());
   if (status == Ipopt::User_Requested_Stop && adapter->stalled()) {
     outcome = {SolveStatus::kConverged, ""};
     out.ipopt_status += " (stalled at a feasible, nearly stationary point: accepted)";

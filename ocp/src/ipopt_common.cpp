@@ -72,10 +72,14 @@ bool initializeIpopt(Ipopt::IpoptApplication& app) {
 }
 
 IpoptOutcome ipoptOutcome(Ipopt::ApplicationReturnStatus status, bool timed_out, int max_iterations,
-                          std::optional<double> time_limit_s) {
+                          std::optional<double> time_limit_s, bool stopped) {
   const std::string name = ipoptStatusName(status);
   std::ostringstream limit;
-  limit << "time limit of " << time_limit_s.value_or(0.0) << " s reached";
+  if (stopped) {
+    limit << "stopped on request (SIGINT)";
+  } else {
+    limit << "time limit of " << time_limit_s.value_or(0.0) << " s reached";
+  }
   if (timed_out && status != Ipopt::Solve_Succeeded &&
       status != Ipopt::Solved_To_Acceptable_Level) {
     return {SolveStatus::kMaxIterations, limit.str()};

@@ -52,9 +52,10 @@ struct IpoptOutcome {
 /// are max_iterations; Infeasible_Problem_Detected, Restoration_Failed and
 /// Not_Enough_Degrees_Of_Freedom are infeasible (no feasible point near this start); the rest
 /// that stop the iteration are diverged, and set-up failures error. `max_iterations` and
-/// `time_limit_s` [s] go into the reasons.
+/// `time_limit_s` [s] go into the reasons; with `stopped` the reason of a timed-out solve says it
+/// was stopped on request instead.
 IpoptOutcome ipoptOutcome(Ipopt::ApplicationReturnStatus status, bool timed_out, int max_iterations,
-                          std::optional<double> time_limit_s);
+                          std::optional<double> time_limit_s, bool stopped = false);
 
 /// Runs `body` (returning bool) for an Ipopt callback: an exception becomes false, which Ipopt
 /// treats as an evaluation failure (no exception crosses its C++ / Fortran frames).

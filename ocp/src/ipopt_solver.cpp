@@ -99,7 +99,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
     // take seconds where the dynamics are stiff): its line search fails at once and the solve
     // ends timed out. (The starting point is always evaluated: the first iteration's callback
     // stops a solve whose limit has passed.)
-    if (!history_.empty() && accounting_.pastTimeLimit(options_.time_limit_s)) {
+    if (!history_.empty() && accounting_.pastTimeLimit(options_.time_limit_s, options_.stop)) {
       timed_out_ = true;
       message_ = "time limit reached";
       return false;
@@ -263,7 +263,7 @@ class TrajectoryNlp final : public Ipopt::TNLP {
             std::numeric_limits<double>::quiet_NaN();
       }
       history_.push_back(record);
-      if (accounting_.pastTimeLimit(options_.time_limit_s)) {
+      if (accounting_.pastTimeLimit(options_.time_limit_s, options_.stop)) {
         timed_out_ = true;
         return false;  // User_Requested_Stop
       }
@@ -478,7 +478,8 @@ SolveResult runIpopt(ParametricTrajectoryModel& model, const PathConstraints* co
   Eigen::VectorXd q = nlp->finalized() ? nlp->finalX() : q0;
   if (q.size() != n || !q.allFinite()) q = q0;
   detail::IpoptOutcome outcome =
-      detail::ipoptOutcome(status, nlp->timedOut(), options.max_iterations, options.time_limit_s);
+      detail::ipoptOutcome(status, nlp->timedOut(), options.max_iterations, options.time_limit_s,
+                           options.stop != nullptr && options.stop->load());
   // Ended without success (wandering, the iteration or time limit, a failed restoration) after
   // an iterate met the criteria: that iterate is the answer (re-simulated and checked after).
   if (outcome.status != SolveStatus::kConverged && nlp->accepted()) {

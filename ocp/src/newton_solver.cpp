@@ -154,8 +154,8 @@ SolveResult solveNewton(ParametricTrajectoryModel& model, const NewtonStart& sta
       return finish(SolveStatus::kMaxIterations,
                     "max_iterations = " + std::to_string(options.max_iterations) + " reached");
     }
-    if (accounting.pastTimeLimit(options.time_limit_s)) {
-      return accounting.finishOnTimeLimit(*options.time_limit_s);
+    if (accounting.pastTimeLimit(options.time_limit_s, options.stop)) {
+      return accounting.finishOnTimeLimit(options.time_limit_s, options.stop);
     }
     if (options.hessian == HessianApproximation::kFiniteDifference) {
       if (!model.lagrangianHessian(q, lambda, mode, options.hessian_step, w)) {

@@ -2,6 +2,7 @@
 // SolveAccounting: the wall clock and integration count of one solve and how it ends, shared
 // by the solvers (not installed).
 
+#include <atomic>
 #include <chrono>
 #include <exception>
 #include <optional>
@@ -12,6 +13,13 @@
 #include "terratraj/ocp/solve_result.hpp"
 
 namespace terratraj::ocp::detail {
+
+/// Why a solve ended early: "stopped on request" when `stop` (may be null) is set, else its time
+/// limit [s].
+inline std::string stopReason(const std::optional<double>& limit_s, const std::atomic<bool>* stop) {
+  if (stop != nullptr && stop->load()) return "stopped on request (SIGINT)";
+  return "time limit of " + std::to_string(limit_s.value_or(0.0)) + " s reached";
+}
 
 /// Starts the clock on construction; finish() fills the result's status, reason, time and
 /// integrations used since construction.
@@ -29,9 +37,10 @@ class SolveAccounting {
   double elapsedSeconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
   }
-  /// Whether an optional time limit [s] has passed.
-  bool pastTimeLimit(const std::optional<double>& limit_s) const {
-    return limit_s && elapsedSeconds() > *limit_s;
+  /// Whether an optional time limit [s] has passed or a stop (may be null) was requested.
+  bool pastTimeLimit(const std::optional<double>& limit_s,
+                     const std::atomic<bool>* stop = nullptr) const {
+    return (stop != nullptr && stop->load()) || (limit_s && elapsedSeconds() > *limit_s);
   }
   /// Completes the result and returns a copy of it.
   SolveResult finish(SolveStatus status, std::string reason) const {
@@ -41,12 +50,13 @@ class SolveAccounting {
     result_->integrations = model_->integrations() - integrations_before_;
     return *result_;
   }
-  /// finish() with kMaxIterations for a solve stopped by `limit_s` [s]: the reason names it
-  /// and the result says so (time_limit_reached: an unfinished iterate, more time may differ).
-  SolveResult finishOnTimeLimit(double limit_s) const {
+  /// finish() with kMaxIterations for a solve stopped by `limit_s` [s] or by `stop`: the reason
+  /// names which and the result says so (time_limit_reached: an unfinished iterate, more time
+  /// may differ).
+  SolveResult finishOnTimeLimit(const std::optional<double>& limit_s,
+                                const std::atomic<bool>* stop = nullptr) const {
     result_->time_limit_reached = true;
-    return finish(SolveStatus::kMaxIterations,
-                  "time limit of " + std::to_string(limit_s) + " s reached");
+    return finish(SolveStatus::kMaxIterations, stopReason(limit_s, stop));
   }
 
  private:

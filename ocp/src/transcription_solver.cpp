@@ -228,6 +228,7 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
   }
   const Deadline deadline(started, options.time_limit_s, options.stop);
   DirectTranscriptionOptions transcription = options.transcription;
+  transcription.stop = options.stop;
   // The problem's Segway look-ups (the verdict checks them) are constraints here too.
   if (problem.tables.segway != nullptr && !transcription.model.segway) {
     transcription.model.segway = SegwayConstraints{*problem.tables.segway};

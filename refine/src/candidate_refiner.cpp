@@ -216,6 +216,7 @@ void CandidateRefiner::solveParametric(const TrajectoryFigures& before, const De
   settings.method = out.method == RefineMethod::kNewton ? ocp::BoundaryValueMethod::kNewton
                                                         : ocp::BoundaryValueMethod::kIpopt;
   if (deadline.limit()) settings.time_limit_s = deadline.left();
+  settings.stop = deadline.stop();
   out.parametric = ocp::solveBoundaryValue(*problem_->vehicle, parametric, settings, problem_->map);
   out.verified = out.parametric->verified;
   out.history = out.parametric->solver.history;
@@ -392,6 +393,7 @@ std::optional<ocp::TranscriptionGuess> CandidateRefiner::solveCoarse(
   coarse.stall.cost_change = kCoarseStallCostChange;
   coarse.stall.constraint_violation = kCoarseStallViolation;
   if (deadline.limit()) coarse.time_limit_s = deadline.left();
+  coarse.stop = deadline.stop();
   ocp::BoundaryValueProblem tightened = *bvp_;
   tightened.limits.v_max = std::max(tightened.limits.v_max * (1.0 - options_.speed_margin),
                                     std::max(bvp_->start.v, bvp_->goal.v));

@@ -230,6 +230,7 @@ SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
   settings.method = parametricMethod(options.method);
   if (options.method == CoreMethod::kIpopt) settings.max_iterations = ipoptMaxIterations(options);
   if (time_left_s) settings.time_limit_s = *time_left_s;
+  settings.stop = options.stop;
   if (seed != nullptr) {
     std::vector<double> t, v, omega;
     for (std::size_t i = 0; i < seed->guess.t.size(); ++i) {

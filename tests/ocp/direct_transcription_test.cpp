@@ -2,6 +2,7 @@
 // (issue "Direct transcription"), each checked by an independent re-simulation.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -586,6 +587,15 @@ TEST(DirectTranscription, FailuresAreStatusesWithIpoptsReason) {
   EXPECT_FALSE(timed.verified.ok);
   EXPECT_NE(timed.verified.message.find("not re-simulated"), std::string::npos);
   EXPECT_FALSE(stopped.result.time_limit_reached);
+  // A stop request (SIGINT) ends it as its clock would, the reason saying so.
+  std::atomic<bool> stop{true};
+  TranscriptionSolveOptions interrupted;
+  interrupted.stop = &stop;
+  const VerifiedTranscription asked = solveTranscription(vehicle, problem, guess, interrupted);
+  EXPECT_EQ(asked.status, SolveStatus::kMaxIterations) << asked.reason;
+  EXPECT_TRUE(asked.time_limit_reached);
+  EXPECT_NE(asked.reason.find("stopped on request"), std::string::npos) << asked.reason;
+  EXPECT_LE(asked.iterations, 1);
   // Off the map.
   BoundaryValueProblem off = problem;
   off.goal.x = 40.0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -390,6 +391,39 @@ TEST_F(NlpSolvers, IterationLimitsAreReported) {
   EXPECT_EQ(ceres_timed.status, SolveStatus::kMaxIterations) << ceres_timed.reason;
   EXPECT_NE(ceres_timed.reason.find("time limit"), std::string::npos) << ceres_timed.reason;
   EXPECT_TRUE(ceres_timed.time_limit_reached);
+}
+
+// A stop request (SIGINT) ends every parametric solver at its next check, as its clock would,
+// and the reason says it was a stop; without the request the same solves converge.
+TEST_F(NlpSolvers, AStopRequestEndsEverySolverAsItsClockWould) {
+  const BoundaryValueProblem problem = fanProblem(8, 0);
+  const Eigen::VectorXd q0 = heuristicGuess(problem);  // far from the optimum
+  ParametricTrajectoryModel model(*vehicle_, problem);
+  std::atomic<bool> stop{true};
+  NewtonOptions newton;
+  newton.stop = &stop;
+  IpoptOptions ipopt;
+  ipopt.path_constraints = false;
+  ipopt.stop = &stop;
+  CeresOptions ceres;
+  ceres.stop = &stop;
+  const auto solveAll = [&] {
+    return std::array<SolveResult, 3>{solveNewton(model, {q0, std::nullopt, {}}, newton, "newton"),
+                                      solveIpopt(model, nullptr, q0, ipopt),
+                                      solveCeres(model, q0, ceres)};
+  };
+  for (const SolveResult& r : solveAll()) {
+    EXPECT_EQ(r.status, SolveStatus::kMaxIterations) << r.method << ": " << r.reason;
+    EXPECT_NE(r.reason.find("stopped on request"), std::string::npos)
+        << r.method << ": " << r.reason;
+    EXPECT_TRUE(r.time_limit_reached) << r.method;
+    EXPECT_EQ(r.iterations, 0) << r.method;
+  }
+  stop = false;
+  for (const SolveResult& r : solveAll()) {
+    EXPECT_EQ(r.status, SolveStatus::kConverged) << r.method << ": " << r.reason;
+    EXPECT_FALSE(r.time_limit_reached) << r.method;
+  }
 }
 
 // Ipopt's own test is 100 times tighter than the solve's criteria: an iteration limit that ends

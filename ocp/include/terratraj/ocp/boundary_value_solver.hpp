@@ -3,6 +3,7 @@
 // flat-ground initial guess, one of the solvers on the terrain, then an independent
 // re-simulation that supplies the report's figures and decides the final status.
 
+#include <atomic>
 #include <optional>
 #include <string>
 
@@ -34,6 +35,9 @@ struct BoundaryValueOptions {
   ConvergenceCriteria criteria;
   int max_iterations = 100;            ///< solver iterations, >= 1
   std::optional<double> time_limit_s;  ///< wall clock of the solver; absent = none
+  /// Set from outside to stop (SIGINT; may be null): the solve ends at its next check as at
+  /// its time limit (time_limit_reached), its reason saying it was stopped.
+  const std::atomic<bool>* stop = nullptr;
   /// Integration of the terrain stage (CVODES; newton_fd switches to fixed-step RK4 so that
   /// finite differences see a smooth map).
   models::IntegratorOptions integrator = [] {

@@ -13,6 +13,7 @@
 // Not thread-safe with respect to the model (one model per thread).
 
 #include <Eigen/Core>
+#include <atomic>
 #include <optional>
 
 #include "terratraj/ocp/parametric_trajectory_model.hpp"
@@ -26,7 +27,10 @@ struct CeresOptions {
   int max_iterations = 100;       ///< budget of Ceres (inner) iterations over all outer iterations
   int max_outer_iterations = 20;  ///< multiplier updates, >= 1
   std::optional<double> time_limit_s;  ///< wall clock [s]; absent = none
-  double initial_penalty = 10.0;       ///< first mu, > 0
+  /// Set from outside to stop (SIGINT; may be null): the solve ends at its next check as at
+  /// its time limit (time_limit_reached), its reason saying it was stopped.
+  const std::atomic<bool>* stop = nullptr;
+  double initial_penalty = 10.0;  ///< first mu, > 0
 };
 
 /// Solves the problem of `model` from q0 (without path constraints, see above). Returns method

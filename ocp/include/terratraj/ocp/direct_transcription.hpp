@@ -6,6 +6,7 @@
 // docs/optimal-control.md, "Direct transcription", gives the formulation and the choices.
 
 #include <Eigen/Core>
+#include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
@@ -86,6 +87,9 @@ struct DirectTranscriptionOptions {
   /// footprint must stay on the map for its attitude to exist).
   double map_margin = 0.5;
   std::optional<double> time_limit_s;  ///< wall clock for the whole solve [s]
+  /// Set from outside to stop (SIGINT; may be null): the solve ends at its next check as at
+  /// its time limit (time_limit_reached), its reason saying it was stopped.
+  const std::atomic<bool>* stop = nullptr;
   double tolerance = 1e-6;             ///< Ipopt's tol (scaled KKT error)
   double constraint_tolerance = 1e-8;  ///< Ipopt's constr_viol_tol (unscaled) [state units]
   /// A solve cycling at a feasible, nearly stationary point (a kink of the terrain) stops

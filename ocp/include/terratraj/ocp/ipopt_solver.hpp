@@ -13,6 +13,7 @@
 // most one solveIpopt() per process at a time. The model is not thread-safe either.
 
 #include <Eigen/Core>
+#include <atomic>
 #include <optional>
 
 #include "terratraj/ocp/parametric_trajectory_model.hpp"
@@ -29,7 +30,10 @@ struct IpoptOptions {
   ConvergenceCriteria criteria;
   int max_iterations = 100;  ///< Ipopt's max_iter, >= 0
   std::optional<double>
-      time_limit_s;      ///< wall clock [s] (also Ipopt's max_cpu_time); absent = none
+      time_limit_s;  ///< wall clock [s] (also Ipopt's max_cpu_time); absent = none
+  /// Set from outside to stop (SIGINT; may be null): the solve ends at its next check as at
+  /// its time limit (time_limit_reached), its reason saying it was stopped.
+  const std::atomic<bool>* stop = nullptr;
   int path_points = 41;  ///< points tau_i where path constraints hold, >= 2
   /// Upper bound of t_f [s] (absent: none). A local solve from a seed has no use for a final
   /// time far beyond the seed's; without a bound the free-speed polynomials can wander to

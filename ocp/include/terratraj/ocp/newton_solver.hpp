@@ -9,6 +9,7 @@
 // fraction-to-boundary rule that keeps t_f positive.
 
 #include <Eigen/Core>
+#include <atomic>
 #include <optional>
 
 #include "terratraj/ocp/parametric_trajectory_model.hpp"
@@ -31,7 +32,10 @@ struct NewtonOptions {
   ConvergenceCriteria criteria;
   int max_iterations = 100;            ///< >= 1
   std::optional<double> time_limit_s;  ///< wall clock; absent = none
-  double min_final_time_s = 1e-3;      ///< t_f below this counts as a collapse [s]
+  /// Set from outside to stop (SIGINT; may be null): the solve ends at its next check as at
+  /// its time limit (time_limit_reached), its reason saying it was stopped.
+  const std::atomic<bool>* stop = nullptr;
+  double min_final_time_s = 1e-3;  ///< t_f below this counts as a collapse [s]
 };
 
 /// Where the iteration starts.

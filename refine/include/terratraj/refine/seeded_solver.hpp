@@ -143,8 +143,10 @@ struct SeededSolveOptions {
   /// converge, and on rough terrain its mesh rounds can take tens of seconds (a Segway problem
   /// on davosdorf converges from its first word in 32 s).
   double first_seed_time_s = kDefaultFirstSeedTimeS;
-  std::optional<double> time_limit_s;       ///< wall clock of the whole solve [s]; absent: none
-  const std::atomic<bool>* stop = nullptr;  ///< set from outside (SIGINT): no further attempt
+  std::optional<double> time_limit_s;  ///< wall clock of the whole solve [s]; absent: none
+  /// Set from outside (SIGINT): no further attempt, and the solver running ends at its next
+  /// iteration (as at its time limit).
+  const std::atomic<bool>* stop = nullptr;
   /// Called after each attempt with its record (progress; may be empty). Must not throw.
   std::function<void(const SeedAttempt&)> on_attempt;
 };
