@@ -41,16 +41,24 @@ std::vector<Eigen::Vector2d> queryPoints(const ElevationMap& map, std::size_t co
   return points;
 }
 
-void sampleHeightAndGradient(benchmark::State& state, Interpolation method) {
+// `query(surface, point)` at the random points in turn.
+template <typename Query>
+void queryAtRandomPoints(benchmark::State& state, Interpolation method, const Query& query) {
   const ElevationMap& map = hills1024();
   const TerrainSurface surface(map, method);
   const std::vector<Eigen::Vector2d> points = queryPoints(map, 4096);
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(surface.sample(points[i]));
+    benchmark::DoNotOptimize(query(surface, points[i]));
     i = (i + 1) & 4095;
   }
   state.SetItemsProcessed(state.iterations());
+}
+
+void sampleHeightAndGradient(benchmark::State& state, Interpolation method) {
+  queryAtRandomPoints(state, method, [](const TerrainSurface& surface, const Eigen::Vector2d& p) {
+    return surface.sample(p);
+  });
 }
 
 void BM_SampleNearest(benchmark::State& state) {
@@ -67,14 +75,9 @@ void BM_SampleBSpline(benchmark::State& state) {
 }
 // Height, gradient and Hessian, as the point model's attitude takes them.
 void sampleWithHessian(benchmark::State& state, Interpolation method) {
-  const ElevationMap& map = hills1024();
-  const TerrainSurface surface(map, method);
-  const std::vector<Eigen::Vector2d> points = queryPoints(map, 4096);
-  std::size_t i = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(surface.sampleWithHessian(points[i]));
-    i = (i + 1) & 4095;
-  }
+  queryAtRandomPoints(state, method, [](const TerrainSurface& surface, const Eigen::Vector2d& p) {
+    return surface.sampleWithHessian(p);
+  });
 }
 void BM_SampleBicubicWithHessian(benchmark::State& state) {
   sampleWithHessian(state, Interpolation::kBicubic);

@@ -103,19 +103,21 @@ double axisDifference(const GridLayer& z, CellIndex c, int d_row, int d_col, int
 // The height at (row, col), continued linearly beyond the grid along each axis through the
 // two outermost samples, so that planes are reproduced exactly.
 double extrapolatedHeight(const float* heights, int rows, int cols, int row, int col) {
+  // `index` beyond [0, count) along one axis, `at(k)` the height at index k of that axis.
+  const auto beyond = [](int index, int count, const auto& at) {
+    const int edge = index < 0 ? 0 : count - 1;
+    const int inner = index < 0 ? 1 : count - 2;
+    const double z_edge = at(edge);
+    const double z_inner = at(inner);
+    return z_edge + std::abs(index - edge) * (z_edge - z_inner);
+  };
   if (col < 0 || col >= cols) {
-    const int edge = col < 0 ? 0 : cols - 1;
-    const int inner = col < 0 ? 1 : cols - 2;
-    const double z_edge = extrapolatedHeight(heights, rows, cols, row, edge);
-    const double z_inner = extrapolatedHeight(heights, rows, cols, row, inner);
-    return z_edge + std::abs(col - edge) * (z_edge - z_inner);
+    return beyond(col, cols,
+                  [&](int c) { return extrapolatedHeight(heights, rows, cols, row, c); });
   }
   if (row < 0 || row >= rows) {
-    const int edge = row < 0 ? 0 : rows - 1;
-    const int inner = row < 0 ? 1 : rows - 2;
-    const double z_edge = extrapolatedHeight(heights, rows, cols, edge, col);
-    const double z_inner = extrapolatedHeight(heights, rows, cols, inner, col);
-    return z_edge + std::abs(row - edge) * (z_edge - z_inner);
+    return beyond(row, rows,
+                  [&](int r) { return extrapolatedHeight(heights, rows, cols, r, col); });
   }
   return heights[static_cast<std::size_t>(row) * cols + col];
 }
