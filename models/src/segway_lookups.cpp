@@ -41,8 +41,10 @@ double linear(const std::vector<double>& axis, const std::vector<double>& values
 
 // Piecewise linear through (axis, values), continued linearly beyond both ends, with every
 // corner rounded by the parabola tangent to its two pieces over +-delta (C1): delta is 0.5 deg,
-// at most a quarter of either piece. Below the corners that bend down (a bound stricter there),
-// above by at most |change of slope| delta / 4 where they bend up.
+// at most a quarter of either piece. The parabola lies below a corner that bends down (a bound
+// stricter there) and above one that bends up, by bend (delta - |u|)^2 / (4 delta) at u from the
+// corner; there the bump bend delta / 4 (1 - (u / delta)^2)^2, larger everywhere in +-delta and
+// C1 (0 with slope 0 at +-delta), is taken off, so the curve never exceeds the look-up.
 double roundedCorners(const std::vector<double>& axis, const std::vector<double>& values, double x,
                       double* dx) {
   constexpr double kDelta = 0.5 * 3.14159265358979323846 / 180.0;  // [rad]
@@ -64,6 +66,11 @@ double roundedCorners(const std::vector<double>& axis, const std::vector<double>
     const double bend = piece_slope(k) - piece_slope(k - 1);
     f += bend * ((u + delta) * (u + delta) / (4.0 * delta) - std::max(0.0, u));
     df += bend * ((u + delta) / (2.0 * delta) - (u > 0.0 ? 1.0 : 0.0));
+    if (bend > 0.0) {  // bends up: below the look-up by the bump
+      const double w = 1.0 - (u / delta) * (u / delta);
+      f -= 0.25 * bend * delta * w * w;
+      df += bend * u * w / delta;
+    }
   }
   if (dx != nullptr) *dx = df;
   return f;

@@ -71,8 +71,9 @@ class SegwaySlopeBounds {
   /// them (continuously differentiable, and with a direction back to drivable ground):
   ///  - up to the first slope, on the side of 0 of `slope`, where either bound is 0 (the edge of
   ///    drivable ground), the look-ups with every corner rounded over +-0.5 deg (by a parabola
-  ///    tangent to both pieces: below the look-up where it bends down, as the defaults do
-  ///    everywhere, above by at most |change of slope| * 0.5 deg / 4 where it bends up);
+  ///    tangent to both pieces, below the look-up where it bends down; where it bends up, less
+  ///    a C1 bump over the same +-0.5 deg that keeps it below the look-up too), never above the
+  ///    look-ups;
   ///  - beyond the edge, the bound's last piece before it continued below 0 (descending by at
   ///    least 1 per radian). The look-ups are flat at 0 there, which gives a point on an
   ///    undrivable slope no direction back; continued, its row is broken with a gradient
