@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "terratraj/ocp/deadline.hpp"
 #include "terratraj/ocp/path_constraints.hpp"
 
 namespace terratraj::ocp::detail {
@@ -76,7 +77,7 @@ IpoptOutcome ipoptOutcome(Ipopt::ApplicationReturnStatus status, bool timed_out,
   const std::string name = ipoptStatusName(status);
   std::ostringstream limit;
   if (stopped) {
-    limit << "stopped on request (SIGINT)";
+    limit << kStoppedOnRequest;
   } else {
     limit << "time limit of " << time_limit_s.value_or(0.0) << " s reached";
   }

@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "terratraj/ocp/deadline.hpp"
 #include "terratraj/ocp/parametric_trajectory_model.hpp"
 #include "terratraj/ocp/solve_result.hpp"
 
@@ -17,7 +18,7 @@ namespace terratraj::ocp::detail {
 /// Why a solve ended early: "stopped on request" when `stop` (may be null) is set, else its time
 /// limit [s].
 inline std::string stopReason(const std::optional<double>& limit_s, const std::atomic<bool>* stop) {
-  if (stop != nullptr && stop->load()) return "stopped on request (SIGINT)";
+  if (stop != nullptr && stop->load()) return kStoppedOnRequest;
   return "time limit of " + std::to_string(limit_s.value_or(0.0)) + " s reached";
 }
 

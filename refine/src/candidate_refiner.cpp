@@ -316,8 +316,9 @@ RefinementResult CandidateRefiner::refine(const models::Trajectory& candidate) c
   // again from the candidate inside a corridor around it, which the clearance constraint keeps.
   const bool class_retry =
       out.refined_figures && !out.homotopy_kept && options_.corridor_radius_m > 0.0;
-  if (class_retry && solver_deadline.over()) out.time_limit_reached = true;  // skipped for time
-  if (class_retry && !solver_deadline.over()) {
+  const bool out_of_time = class_retry && solver_deadline.over();
+  if (out_of_time) out.time_limit_reached = true;  // the retry skipped for lack of time
+  if (class_retry && !out_of_time) {
     const terrain::ClearanceMap corridor(corridorMap(out.candidate));
     out.corridor_radius_m = options_.corridor_radius_m;
     out.refined_figures.reset();

@@ -455,10 +455,9 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
       SeededSolution found = solveFromSearch(vehicle, problem, *map, options, within.left(), why);
       // Cut when its PRM or its refinement says the clock stopped it (a solve, or a step skipped
       // for lack of time: RefinementResult::time_limit_reached), or its whole budget is gone. A
-      // chain that ended on its own
-      // ends the same again (the PRM's seed, the deterministic solvers): not retried. Until
-      // 2026-12-07 any chain that used 80 % of its budget was retried, repeating a 25 s refinement
-      // to the same verdict on davosdorf's Segway 3.
+      // chain that ended on its own ends the same again (the PRM's seed, the deterministic
+      // solvers): not retried. Until 2026-12-07 any chain that used 80 % of its budget was
+      // retried, repeating a 25 s refinement to the same verdict on davosdorf's Segway 3.
       unfinished = found.time_limit_reached || within.over();
       log.record(std::move(found), t0);
     } else {

@@ -148,11 +148,7 @@ std::vector<double> bSplineCoefficientGrid(const float* heights, int rows, int c
   // Along x, for the rows -2 .. rows + 1 (padded by two) and the columns -1 .. cols; the heights
   // read directly inside the grid, extrapolated on its border.
   std::vector<double> along_x(static_cast<std::size_t>(rows + 4) * padded_cols);
-  const auto z = [&](int r, int c) {
-    return r >= 0 && r < rows && c >= 0 && c < cols
-               ? static_cast<double>(heights[static_cast<std::size_t>(r) * cols + c])
-               : extrapolatedHeight(heights, rows, cols, r, c);
-  };
+  const auto z = [&](int r, int c) { return extrapolatedHeight(heights, rows, cols, r, c); };
   for (int r = -2; r < rows + 2; ++r) {
     double* out = along_x.data() + static_cast<std::size_t>(r + 2) * padded_cols;
     if (r >= 0 && r < rows) {

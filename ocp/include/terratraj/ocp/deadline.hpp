@@ -9,6 +9,9 @@
 
 namespace terratraj::ocp {
 
+/// The reason every solver gives when a stop (SIGINT) ended it.
+inline constexpr const char* kStoppedOnRequest = "stopped on request (SIGINT)";
+
 /// A budget of `limit_s` seconds from `started` (absent: none), cut short when `stop` (may be
 /// null) is set. Cheap to copy; the stop flag is not owned.
 class Deadline {
