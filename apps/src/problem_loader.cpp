@@ -17,6 +17,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -40,7 +41,9 @@ constexpr int kMinIntervals = 2;       // solver.intervals
 constexpr int kMaxIntervals = 100000;  // keeps allocations sane
 constexpr int kMinIterations = 1;      // solver.max_iterations
 constexpr int kMaxIterations = 1000000;
-constexpr int kMinHomotopyClasses = 1;  // planner.homotopy_classes
+constexpr int kMaxSearchMilestones = 100000000;  // solver.search_improve_milestones
+constexpr int kMaxSearchImprovements = 1000;     // solver.search_improvements
+constexpr int kMinHomotopyClasses = 1;           // planner.homotopy_classes
 constexpr int kMaxHomotopyClasses = 1000;
 constexpr std::size_t kMaxProblemFileBytes = std::size_t{16} << 20;  // 16 MiB
 constexpr std::size_t kReadChunkBytes = std::size_t{1} << 16;
@@ -294,7 +297,9 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
                        "transcription_max_iterations",
                        "ipopt_max_iterations",
                        "seed_time_s",
-                       "first_seed_time_s"});
+                       "first_seed_time_s",
+                       "search_improve_milestones",
+                       "search_improvements"});
   SolverSpec solver;
   if (const std::optional<Field> method = map.find("method")) {
     solver.method = readEnum<SolverMethod>(ctx, *method, parseSolverMethod, solverMethodNames());
@@ -334,6 +339,16 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
   }
   solver.seed_time_s = map.optionalNumber("seed_time_s", Range::positive());
   solver.first_seed_time_s = map.optionalNumber("first_seed_time_s", Range::positive());
+  for (const auto& [key, max_value, field] :
+       {std::tuple{"search_improve_milestones", kMaxSearchMilestones,
+                   &solver.search_improve_milestones},
+        std::tuple{"search_improvements", kMaxSearchImprovements, &solver.search_improvements}}) {
+    if (map.find(key)) {
+      int value = 0;
+      map.readIntInto(key, 0, max_value, value);
+      *field = value;
+    }
+  }
   using ocp::TranscriptionScheme;
   readChoiceInto<TranscriptionScheme>(ctx, map, "scheme",
                                       {{"hermite_simpson", TranscriptionScheme::kHermiteSimpson},

@@ -169,6 +169,13 @@ refine::SeededSolveOptions seededSolveOptions(const ProblemSpec& problem,
   if (problem.solver.first_seed_time_s) {
     seeded.first_seed_time_s = *problem.solver.first_seed_time_s;
   }
+  if (problem.solver.search_improve_milestones) {
+    seeded.search_improve_milestones =
+        static_cast<std::size_t>(*problem.solver.search_improve_milestones);
+  }
+  if (problem.solver.search_improvements) {
+    seeded.search_improvements = *problem.solver.search_improvements;
+  }
   seeded.stop = stop;
   return seeded;
 }

@@ -310,6 +310,8 @@ TEST_F(CliTest, SolveWritesTheReportAndTheTrajectory) {
   // The seeds' budgets (the defaults) and each attempt's, printed on stderr as they end.
   EXPECT_DOUBLE_EQ(json["seed_time_s"].get<double>(), 10.0);
   EXPECT_DOUBLE_EQ(json["first_seed_time_s"].get<double>(), 30.0);
+  EXPECT_EQ(json["search_improve_milestones"], 8000);
+  EXPECT_EQ(json["search_improvements"], 2);
   ASSERT_FALSE(json["attempts"].empty());
   EXPECT_DOUBLE_EQ(json["attempts"][0]["budget_s"].get<double>(), 30.0);
   EXPECT_EQ(json["attempts"][0]["round"], 0);

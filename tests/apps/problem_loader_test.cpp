@@ -146,9 +146,13 @@ goal: {x: .5, y: 7., heading_deg: 270}
 cost: {kind: slope_dwell, alpha: 2.5}
 solver: {method: collocation, intervals: 2, max_iterations: 1, time_limit_s: 0.5,
          tolerance: {position_m: 1e-6, heading_rad: 2e-6}, initial_guess: flat,
-         transcription_max_iterations: 77, ipopt_max_iterations: 55}
+         transcription_max_iterations: 77, ipopt_max_iterations: 55,
+         search_improve_milestones: 0, search_improvements: 5}
 planner: {kind: taeasl, time_limit_s: 0, seed: 0, homotopy_classes: 1, frame_radius_m: 2.5}
 )");
+  const refine::SeededSolveOptions seeded = seededSolveOptions(p, nullptr, nullptr);
+  EXPECT_EQ(seeded.search_improve_milestones, 0u);
+  EXPECT_EQ(seeded.search_improvements, 5);
   EXPECT_EQ(p.solver.initial_guess, InitialGuessKind::kFlat);
   ASSERT_TRUE(p.solver.transcription_max_iterations.has_value());
   EXPECT_EQ(*p.solver.transcription_max_iterations, 77);

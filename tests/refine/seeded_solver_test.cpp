@@ -346,7 +346,7 @@ TEST_F(SeededSolverTest, WordsAcrossSlopesBeyondTheLimitsComeAfterTheSearchSeed)
   EXPECT_NE(s.attempts.front().seed.find("search"), std::string::npos) << s.attempts.front().seed;
   // The seed's name reports the PRM's budget: the default 10 s (the first seed's budget is
   // first_seed_time_s, 30 s, and the PRM gets at most half of it).
-  EXPECT_NE(s.attempts.front().seed.find(" s of 10 s)"), std::string::npos)
+  EXPECT_NE(s.attempts.front().seed.find(" s of 10 s"), std::string::npos)
       << s.attempts.front().seed;
   expectWithinLimitsAndAtGoal(problem, s.verified.trajectory);
   models::AttitudeWorkspace workspace;
@@ -423,6 +423,76 @@ TEST(SeededSolverSegway, AStartOnASlopeItCannotDriveIsUnreachable) {
   const SeededSolution drivable = solveOn(15.0);
   ASSERT_EQ(drivable.status, ocp::SolveStatus::kConverged) << drivable.reason;
   EXPECT_TRUE(drivable.verdict.passes()) << drivable.verdict.reason;
+}
+
+// When the refinement of the PRM's first solution fails on its own (here: Ipopt held to 2
+// iterations), the PRM continues for search_improve_milestones and its better route is
+// refined, up to search_improvements times. The seed's name says which route, the reason what
+// became of the earlier ones. With no continuation, the first route's verdict stands. (On this
+// map the PRM's route improves within 200 milestones of its first solution and again within
+// the next 200, then not within 200 more.)
+TEST_F(SeededSolverTest, AFailedRefinementOfTheSearchSeedRefinesThePrmsBetterRoute) {
+  for (int row = 21; row <= 40; ++row) {
+    for (int col = 36; col <= 44; ++col) map_.elevation()(row, col) = std::nanf("");
+  }
+  ocp::BoundaryValueProblem problem;
+  problem.start = {6.0, 5.0, 0.0, 0.0, 0.0};
+  problem.goal = {16.0, 5.0, 0.0, 0.0, 0.0};
+  problem.limits = sets::roverLimits();
+  SeededSolveOptions options;
+  options.transcription.transcription.max_iterations = 2;
+  options.search_improve_milestones = 200;
+  options.search_improvements = 0;
+  const SeededSolution first = solveFromSearch(vehicle_, problem, map_, options, 60.0, "a test");
+  EXPECT_NE(first.status, ocp::SolveStatus::kConverged);
+  EXPECT_FALSE(first.time_limit_reached);
+  EXPECT_EQ(first.initial_guess.rfind("search (prm first solution, ", 0), 0u);
+  EXPECT_EQ(first.initial_guess.find("milestones"), std::string::npos) << first.initial_guess;
+  EXPECT_EQ(first.reason.find("before it"), std::string::npos) << first.reason;
+
+  options.search_improvements = 3;
+  const SeededSolution later = solveFromSearch(vehicle_, problem, map_, options, 60.0, "a test");
+  EXPECT_NE(later.status, ocp::SolveStatus::kConverged);
+  EXPECT_FALSE(later.time_limit_reached);
+  EXPECT_NE(later.initial_guess.find("; its best route after 400 more milestones, "),
+            std::string::npos)
+      << later.initial_guess;
+  const std::size_t before_first = later.reason.find("; before it, search (prm first solution, ");
+  const std::size_t before_second = later.reason.find("after 200 more milestones, ");
+  EXPECT_NE(before_first, std::string::npos) << later.reason;
+  EXPECT_NE(before_second, std::string::npos) << later.reason;
+  EXPECT_LT(before_first, before_second);  // in the order they were refined
+}
+
+// After a word converged, the search seed is tried in the first round when the best cost is
+// above retry_cost_ratio x the shortest word's bang-bang time (a word's detour round a slope
+// the PRM's route passes); not with the ratio out of reach.
+TEST_F(SeededSolverTest, AWordsDetourAlsoTriesTheSearchSeed) {
+  ocp::BoundaryValueProblem problem;
+  problem.start = {8.0, 8.0, 0.0, 0.0, 0.0};
+  problem.goal = {14.0, 12.0, M_PI / 2, 0.0, 0.0};
+  problem.limits = sets::roverLimits();
+  SeededSolveOptions options;
+  options.time_limit_s = 60.0;
+  options.max_words = 1;
+  options.retry_cost_ratio = 1.0;  // any cost above the word's bang-bang time
+  const SeededSolution tried = solveSeeded(vehicle_, problem, &map_, options);
+  ASSERT_EQ(tried.status, ocp::SolveStatus::kConverged) << tried.reason;
+  ASSERT_GE(tried.attempts.size(), 2u);
+  EXPECT_NE(tried.attempts.front().seed.find("dubins"), std::string::npos);
+  EXPECT_EQ(tried.attempts.front().status, ocp::SolveStatus::kConverged);
+  EXPECT_NE(tried.attempts.back().seed.find("search"), std::string::npos)
+      << tried.attempts.back().seed;
+  EXPECT_EQ(tried.attempts.back().round, 0);
+  expectWithinLimitsAndAtGoal(problem, tried.verified.trajectory);
+
+  options.retry_cost_ratio = 1.5;
+  const SeededSolution kept = solveSeeded(vehicle_, problem, &map_, options);
+  ASSERT_EQ(kept.status, ocp::SolveStatus::kConverged) << kept.reason;
+  for (const SeedAttempt& a : kept.attempts) {
+    EXPECT_EQ(a.seed.find("search"), std::string::npos) << a.seed;
+  }
+  EXPECT_LE(tried.verified.cost, kept.verified.cost + 1e-9);  // the better result kept
 }
 
 // The search seed's budget: absent, kDefaultSearchTimeS (the moon four-wheel problem of

@@ -226,6 +226,12 @@ struct SolverSpec {
   std::optional<double> seed_time_s;
   /// auto seeds: the first seed's first budget [s], > 0; absent: refine::kDefaultFirstSeedTimeS
   std::optional<double> first_seed_time_s;
+  /// The search seed: milestones the PRM continues for after a failed refinement of its route,
+  /// >= 0; absent: refine::kDefaultSearchImproveMilestones
+  std::optional<int> search_improve_milestones;
+  /// The search seed: at most this many such continuations, >= 0; absent:
+  /// refine::kDefaultSearchImprovements
+  std::optional<int> search_improvements;
 };
 
 /// `planner`: the global planner.

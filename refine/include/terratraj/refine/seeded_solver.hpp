@@ -19,7 +19,8 @@
 // it). Every attempt is verified (the verdict, the Segway's look-ups included);
 // the best converged cost wins; a second word is tried when the first fails or is within
 // `retry_length_ratio` of it, or when the best cost so far is above `retry_cost_ratio` x the
-// word's bang-bang time. Each seed runs within a budget (`first_seed_time_s` for the
+// word's bang-bang time; the search seed too, when it is above that ratio x the shortest
+// word's. Each seed runs within a budget (`first_seed_time_s` for the
 // first, `seed_time_s` for the others); the seeds cut by theirs (a step stopped by the clock)
 // are retried, in the same order, with twice the budget, round after round, repeating only the
 // steps the clock stopped (a portfolio: a seed on which the solver wanders costs its budget,
@@ -28,6 +29,7 @@
 // limits, lethal or no-data cells) is `infeasible` with the reason (models::checkGoalReachability).
 
 #include <atomic>
+#include <cstddef>
 #include <functional>
 #include <optional>
 #include <string>
@@ -64,6 +66,11 @@ ocp::TranscriptionSolveOptions defaultCoreTranscription();
 /// stops at its first solution (found in under 1 s on open maps, up to several seconds on rough
 /// real DEMs), so the budget runs out only when the search finds nothing.
 inline constexpr double kDefaultSearchTimeS = 10.0;
+/// SeededSolveOptions::search_improve_milestones's default: 0.03 s of the PRM on the gully DEM,
+/// 0.6 s on davosdorf (the Segway problem above improved at about 4,000 and 8,700).
+inline constexpr std::size_t kDefaultSearchImproveMilestones = 8000;
+/// SeededSolveOptions::search_improvements's default.
+inline constexpr int kDefaultSearchImprovements = 2;
 
 /// One attempt: a seed and a solver.
 struct SeedAttempt {
@@ -106,7 +113,10 @@ struct SeededSolveOptions {
   /// the attitude limits) when the best verified cost is above this ratio x the word's
   /// bang-bang time along its length (v_max, a_max, the end speeds): the search seed's
   /// refinement keeps the PRM's class, which can be a detour far slower than a word (davosdorf
-  /// Segway, 47.1 s against a word's 16.3 s), >= 1.
+  /// Segway, 47.1 s against a word's 16.3 s), >= 1. The search seed (not tried yet) is tried
+  /// too when the best cost is above this ratio x the shortest word's bang-bang time: a word's
+  /// optimum can go far round a slope the PRM's route passes (davosdorf Segway, 18.0 s against
+  /// 9.9 s).
   double retry_cost_ratio = 1.5;
   /// ipopt (which holds v_max and a_max): the speed polynomial's order at least this, so the
   /// speed is free to rise to v_max and return to the end speeds (rest to rest works), >= 1.
@@ -127,6 +137,16 @@ struct SeededSolveOptions {
   /// `terratraj solve` passes planner.time_limit_s.
   std::optional<double> search_time_s;
   std::uint64_t search_seed = 1;  ///< the PRM's random seed
+  /// Search seed: when the refinement of the PRM's route ends without a verified trajectory on
+  /// its own (not stopped by the clock), the PRM continues for this many more milestones (a
+  /// count, so the route is the same every run; within the chain's time) and its better route,
+  /// if it found one, is refined. 0: the first solution alone. A first solution can wind where
+  /// a later route does not: a Segway problem on davosdorf whose first route's refinement ends
+  /// infeasible after 7 s converges in 1.5 s from the route 8,000 milestones later (0.6 s of
+  /// the PRM there; 0.03 s on the gully DEM).
+  std::size_t search_improve_milestones = kDefaultSearchImproveMilestones;
+  /// At most this many continuations after a failed refinement, >= 0.
+  int search_improvements = kDefaultSearchImprovements;
   /// With initial_guess kAuto and a map, first checked: whether the goal can be reached at all
   /// (models::checkGoalReachability); when not, kInfeasible with its reason before any seed is
   /// tried. std::nullopt: not checked.
