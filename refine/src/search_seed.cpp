@@ -69,7 +69,8 @@ bool failedOnItsOwn(const refine::RefinementResult& r, const ocp::Deadline& with
 SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
                                const ocp::BoundaryValueProblem& problem,
                                const terrain::ElevationMap& map, const SeededSolveOptions& options,
-                               std::optional<double> time_left_s, const std::string& why) {
+                               std::optional<double> time_left_s, const std::string& why,
+                               RouteOrder order) {
   const ocp::Deadline within(time_left_s, options.stop);
   SeededSolution out;
   out.method = "collocation";
@@ -103,10 +104,8 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
        << 1e-3 * plan.first_solution_ms.value_or(plan.planning_time_ms) << " s of " << budget
        << " s";
   // After a refinement that failed on its own, the PRM continues for search_improve_milestones
-  // (cheap next to a refinement: 0.03-0.6 s) and its better route is refined. The first
-  // solution is refined first: a better route can pass closer to what the refiner must keep
-  // off (on the gully DEM, routes 8,000 milestones on pass the band beside no data where the
-  // guess cannot be placed; the first solution's refinement converges).
+  // (cheap next to a refinement: 0.03-0.6 s) and its better route is refined (RouteOrder: the
+  // first solution first, or the route after the first continuation).
   std::size_t milestones = 0;        // continued for so far
   std::size_t route_milestones = 0;  // when the best route was found (0: the first solution)
   const auto improveRoute = [&]() {
@@ -134,6 +133,7 @@ SeededSolution solveFromSearch(const models::TerrainFollowingModel& vehicle,
     name << ")";
     return name.str();
   };
+  if (order == RouteOrder::kImprovedFirst) improveRoute();
   search::ReferenceFrameOptions frame_options;
   frame_options.anchor = 0.5 * (query.start.position + query.goal.position);
   const search::ReferenceFrames frames =

@@ -464,9 +464,9 @@ TEST_F(SeededSolverTest, AFailedRefinementOfTheSearchSeedRefinesThePrmsBetterRou
   EXPECT_LT(before_first, before_second);  // in the order they were refined
 }
 
-// After a word converged, the search seed is tried in the first round when the best cost is
-// above retry_cost_ratio x the shortest word's bang-bang time (a word's detour round a slope
-// the PRM's route passes); not with the ratio out of reach.
+// After a word converged, the search seed is tried in the first round, after the words, when
+// the best cost is above retry_cost_ratio x the shortest word's bang-bang time (a word's detour
+// round a slope the PRM's route passes); not with the ratio out of reach.
 TEST_F(SeededSolverTest, AWordsDetourAlsoTriesTheSearchSeed) {
   ocp::BoundaryValueProblem problem;
   problem.start = {8.0, 8.0, 0.0, 0.0, 0.0};
@@ -484,6 +484,11 @@ TEST_F(SeededSolverTest, AWordsDetourAlsoTriesTheSearchSeed) {
   EXPECT_NE(tried.attempts.back().seed.find("search"), std::string::npos)
       << tried.attempts.back().seed;
   EXPECT_EQ(tried.attempts.back().round, 0);
+  // Improving on a result, it refines the PRM's route search_improve_milestones on
+  // (RouteOrder::kImprovedFirst), not its first solution.
+  EXPECT_NE(tried.attempts.back().seed.find("; its best route after 8000 more milestones"),
+            std::string::npos)
+      << tried.attempts.back().seed;
   expectWithinLimitsAndAtGoal(problem, tried.verified.trajectory);
 
   options.retry_cost_ratio = 1.5;

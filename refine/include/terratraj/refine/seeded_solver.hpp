@@ -113,10 +113,10 @@ struct SeededSolveOptions {
   /// the attitude limits) when the best verified cost is above this ratio x the word's
   /// bang-bang time along its length (v_max, a_max, the end speeds): the search seed's
   /// refinement keeps the PRM's class, which can be a detour far slower than a word (davosdorf
-  /// Segway, 47.1 s against a word's 16.3 s), >= 1. The search seed (not tried yet) is tried
-  /// too when the best cost is above this ratio x the shortest word's bang-bang time: a word's
-  /// optimum can go far round a slope the PRM's route passes (davosdorf Segway, 18.0 s against
-  /// 9.9 s).
+  /// Segway, 47.1 s against a word's 16.3 s), >= 1. For the transcription methods the search
+  /// seed (not tried yet) is tried too when the best cost is above this ratio x the shortest
+  /// word's bang-bang time: a word's optimum can go far round a slope the PRM's route passes
+  /// (davosdorf Segway, 18.0 s against 9.9 s).
   double retry_cost_ratio = 1.5;
   /// ipopt (which holds v_max and a_max): the speed polynomial's order at least this, so the
   /// speed is free to rise to v_max and return to the end speeds (rest to rest works), >= 1.
@@ -145,7 +145,8 @@ struct SeededSolveOptions {
   /// infeasible after 7 s converges in 1.5 s from the route 8,000 milestones later (0.6 s of
   /// the PRM there; 0.03 s on the gully DEM).
   std::size_t search_improve_milestones = kDefaultSearchImproveMilestones;
-  /// At most this many continuations after a failed refinement, >= 0.
+  /// At most this many continuations after a failed refinement, >= 0. For the transcription
+  /// methods (auto, collocation, shooting); newton and ceres refine the first route alone.
   int search_improvements = kDefaultSearchImprovements;
   /// With initial_guess kAuto and a map, first checked: whether the goal can be reached at all
   /// (models::checkGoalReachability); when not, kInfeasible with its reason before any seed is
