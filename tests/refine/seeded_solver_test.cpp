@@ -74,6 +74,19 @@ class SeededSolverTest : public ::testing::Test {
     return problem;
   }
 
+  // Makes a block of the map no data, beside the straight route from (6, 5) to (16, 5), and
+  // returns that problem, rest to rest, the rover's limits.
+  ocp::BoundaryValueProblem besideNoData() {
+    for (int row = 21; row <= 40; ++row) {
+      for (int col = 36; col <= 44; ++col) map_.elevation()(row, col) = std::nanf("");
+    }
+    ocp::BoundaryValueProblem problem;
+    problem.start = {6.0, 5.0, 0.0, 0.0, 0.0};
+    problem.goal = {16.0, 5.0, 0.0, 0.0, 0.0};
+    problem.limits = sets::roverLimits();
+    return problem;
+  }
+
   terrain::ElevationMap map_;
   terrain::TerrainSurface surface_;
   models::PointAttitudeModel vehicle_;
@@ -313,13 +326,7 @@ TEST_F(SeededSolverTest, AReachableGoalPassesTheCheckAndIsSolved) {
 // reaches the no-data cells). The words are dropped before any solve, the search seed goes
 // round, and its refinement keeps where the surface is defined.
 TEST_F(SeededSolverTest, NoDataBesideTheWordsLeavesItToTheSearchSeed) {
-  for (int row = 21; row <= 40; ++row) {
-    for (int col = 36; col <= 44; ++col) map_.elevation()(row, col) = std::nanf("");
-  }
-  ocp::BoundaryValueProblem problem;
-  problem.start = {6.0, 5.0, 0.0, 0.0, 0.0};
-  problem.goal = {16.0, 5.0, 0.0, 0.0, 0.0};
-  problem.limits = sets::roverLimits();
+  const ocp::BoundaryValueProblem problem = besideNoData();
   const SeededSolution s = solve(problem, CoreMethod::kAuto);
   EXPECT_EQ(s.status, ocp::SolveStatus::kConverged) << s.reason;
   for (const SeedAttempt& a : s.attempts) {
@@ -432,13 +439,7 @@ TEST(SeededSolverSegway, AStartOnASlopeItCannotDriveIsUnreachable) {
 // map the PRM's route improves within 200 milestones of its first solution and again within
 // the next 200, then not within 200 more.)
 TEST_F(SeededSolverTest, AFailedRefinementOfTheSearchSeedRefinesThePrmsBetterRoute) {
-  for (int row = 21; row <= 40; ++row) {
-    for (int col = 36; col <= 44; ++col) map_.elevation()(row, col) = std::nanf("");
-  }
-  ocp::BoundaryValueProblem problem;
-  problem.start = {6.0, 5.0, 0.0, 0.0, 0.0};
-  problem.goal = {16.0, 5.0, 0.0, 0.0, 0.0};
-  problem.limits = sets::roverLimits();
+  const ocp::BoundaryValueProblem problem = besideNoData();
   SeededSolveOptions options;
   options.transcription.transcription.max_iterations = 2;
   options.search_improve_milestones = 200;

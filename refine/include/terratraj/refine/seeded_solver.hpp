@@ -145,8 +145,9 @@ struct SeededSolveOptions {
   /// infeasible after 7 s converges in 1.5 s from the route 8,000 milestones later (0.6 s of
   /// the PRM there; 0.03 s on the gully DEM).
   std::size_t search_improve_milestones = kDefaultSearchImproveMilestones;
-  /// At most this many continuations after a failed refinement, >= 0. For the transcription
-  /// methods (auto, collocation, shooting); newton and ceres refine the first route alone.
+  /// At most this many continuations after a failed refinement, >= 0. Both for the
+  /// transcription methods (auto, collocation, shooting); newton and ceres refine the first
+  /// route alone.
   int search_improvements = kDefaultSearchImprovements;
   /// With initial_guess kAuto and a map, first checked: whether the goal can be reached at all
   /// (models::checkGoalReachability); when not, kInfeasible with its reason before any seed is
