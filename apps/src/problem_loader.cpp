@@ -339,14 +339,14 @@ SolverSpec parseSolver(const Context& ctx, const Field& field) {
   }
   solver.seed_time_s = map.optionalNumber("seed_time_s", Range::positive());
   solver.first_seed_time_s = map.optionalNumber("first_seed_time_s", Range::positive());
-  for (const auto& [key, max_value, field] :
+  for (const auto& [key, max_value, target] :
        {std::tuple{"search_improve_milestones", kMaxSearchMilestones,
                    &solver.search_improve_milestones},
         std::tuple{"search_improvements", kMaxSearchImprovements, &solver.search_improvements}}) {
     if (map.find(key)) {
       int value = 0;
       map.readIntInto(key, 0, max_value, value);
-      *field = value;
+      *target = value;
     }
   }
   using ocp::TranscriptionScheme;
