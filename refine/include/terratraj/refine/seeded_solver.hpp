@@ -67,7 +67,8 @@ ocp::TranscriptionSolveOptions defaultCoreTranscription();
 /// real DEMs), so the budget runs out only when the search finds nothing.
 inline constexpr double kDefaultSearchTimeS = 10.0;
 /// SeededSolveOptions::search_improve_milestones's default: 0.03 s of the PRM on the gully DEM,
-/// 0.6 s on davosdorf (the Segway problem above improved at about 4,000 and 8,700).
+/// 0.6 s on davosdorf (the PRM's route of a davosdorf Segway problem improved about 4,000 and
+/// 8,700 milestones after its first solution).
 inline constexpr std::size_t kDefaultSearchImproveMilestones = 8000;
 /// SeededSolveOptions::search_improvements's default.
 inline constexpr int kDefaultSearchImprovements = 2;
