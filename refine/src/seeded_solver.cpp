@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "attempt_log.hpp"
+#include "end_state_check.hpp"
 #include "terratraj/ocp/deadline.hpp"
 #include "terratraj/ocp/dubins_path.hpp"
 #include "terratraj/ocp/initial_guess.hpp"
@@ -21,8 +22,6 @@ namespace terratraj::refine {
 namespace {
 
 using detail::AttemptLog;
-
-constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
 using Clock = std::chrono::steady_clock;
 
@@ -253,40 +252,6 @@ SeededSolution attempt(const models::TerrainFollowingModel& vehicle,
   return out;
 }
 
-// The Segway at the start or the goal on a slope (its pitch along the heading) where its
-// look-ups allow no speed or no acceleration: it can neither leave the start nor stop at the
-// goal, so the goal is unreachable (with the reason); std::nullopt otherwise.
-std::optional<models::GoalReachability> segwayStuckAtAnEnd(
-    const models::TerrainFollowingModel& vehicle, const ocp::BoundaryValueProblem& problem,
-    const models::SegwayLookups& segway) {
-  const std::pair<const char*, const ocp::VehicleState*> ends[] = {{"start", &problem.start},
-                                                                   {"goal", &problem.goal}};
-  for (const auto& [name, state] : ends) {
-    models::AttitudeWorkspace workspace;
-    models::AttitudeResult attitude;
-    if (vehicle.compute({state->x, state->y, state->heading}, workspace, attitude) !=
-        models::AttitudeStatus::kOk) {
-      continue;  // the problem's validation names a pose the vehicle cannot rest at
-    }
-    const double slope = attitude.attitude.pitch;
-    if (segway.bounds.speedLimit(slope) > 0.0 && segway.bounds.accelerationLimit(slope) > 0.0) {
-      continue;
-    }
-    std::ostringstream why;
-    why.precision(3);
-    why << "the goal cannot be reached: at the " << name << " the Segway stands on a slope of "
-        << slope * kDegreesPerRadian
-        << " deg along its heading, where its look-ups allow no speed or "
-        << "acceleration (they allow slopes under "
-        << segway.bounds.drivableSlope() * kDegreesPerRadian << " deg)";
-    models::GoalReachability out;
-    out.reachable = false;
-    out.reason = why.str();
-    return out;
-  }
-  return std::nullopt;
-}
-
 // solveSeeded's first step: whether the goal can be reached at all (with initial_guess kAuto, a
 // map, and the check enabled; else std::nullopt), within what is left of the time limit.
 std::optional<models::GoalReachability> checkReachability(
@@ -301,12 +266,11 @@ std::optional<models::GoalReachability> checkReachability(
   if (const std::optional<double> left = deadline.left()) {
     check.time_limit_s = std::min(check.time_limit_s.value_or(*left), *left);
   }
+  if (std::optional<models::GoalReachability> end = detail::checkEndStates(vehicle, problem)) {
+    return end;
+  }
   models::VehicleLimits limits = problem.limits;
   if (problem.tables.segway != nullptr) {
-    if (std::optional<models::GoalReachability> stuck =
-            segwayStuckAtAnEnd(vehicle, problem, *problem.tables.segway)) {
-      return stuck;
-    }
     // Where its look-ups allow no speed, the Segway cannot drive: a pitch limit.
     limits.pitch_max = std::min(limits.pitch_max, problem.tables.segway->bounds.drivableSlope());
   }
