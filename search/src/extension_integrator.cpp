@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "terratraj/terrain/no_data_band.hpp"
 #include "terratraj/terrain/tangent_plane_patch.hpp"
 
 namespace terratraj::search {
@@ -20,6 +21,11 @@ constexpr int kSimpsonIntervals = 4;
 constexpr double kFinalApproachSteps = 4.0;
 // Lateral misses below this fraction of the end tolerance are not corrected.
 constexpr double kLateralSlackFraction = 0.25;
+// How far a vehicle's contact points may reach from its reference point [m]: the chords are
+// checked this far (and the surface's stencil reach) from no data.
+constexpr double kFootprintReachM = 1.0;
+// Chord checks every this fraction of a cell.
+constexpr double kChordSpacingCells = 0.25;
 
 // Position (u, w) and angle after arc length h in a plane, starting at the origin along +u with
 // curvature varying linearly from k0 to k1.
@@ -67,7 +73,12 @@ const char* extensionStatusName(ExtensionStatus status) {
 
 ExtensionIntegrator::ExtensionIntegrator(const PlanningProblem& problem,
                                          const IntegrationSettings& settings)
-    : problem_(&problem), settings_(settings), steering_(problem.limits) {}
+    : problem_(&problem), settings_(settings), steering_(problem.limits) {
+  const double cell = problem.map->geometry().cell;
+  near_no_data_ =
+      terrain::noDataBand(*problem.map, problem.vehicle->surface().stencilReach() +
+                                            static_cast<int>(std::ceil(kFootprintReachM / cell)));
+}
 
 models::TrajectorySample trajectorySample(const PathPoint& point, double t0) {
   models::TrajectorySample sample;
@@ -102,6 +113,44 @@ bool ExtensionIntegrator::attitudeAt(PathPoint& point, ExtensionStatus& status) 
   if (std::abs(point.roll) > problem_->limits.roll_max) {
     status = ExtensionStatus::kRoll;
     return false;
+  }
+  return true;
+}
+
+bool ExtensionIntegrator::chordPlaceable(const PathPoint& a, const PathPoint& b) {
+  if (near_no_data_.empty()) return true;
+  const terrain::GridGeometry& geometry = problem_->map->geometry();
+  const auto near = [&](const Eigen::Vector2d& p) {
+    const std::optional<terrain::CellIndex> c = geometry.cellAt(p);
+    return !c || near_no_data_[geometry.linearIndex(*c)] != 0;
+  };
+  if (!near(a.position) && !near(b.position)) return true;
+  // Where the chord crosses a line of the half-cell grid (the cells' edges and centres: the
+  // stencil a surface reads changes only there, so the point model's placement is constant
+  // between two crossings), and every quarter cell (a footprint turns along the chord); one
+  // point checked between each two.
+  const double half = 0.5 * geometry.cell;
+  const Eigen::Vector2d d = b.position - a.position;
+  chord_fractions_.assign({0.0, 1.0});
+  for (int axis = 0; axis < 2; ++axis) {
+    if (d[axis] == 0.0) continue;
+    const double lo = std::min(a.position[axis], b.position[axis]);
+    const double hi = std::max(a.position[axis], b.position[axis]);
+    for (double k = std::ceil(lo / half); k * half <= hi; k += 1.0) {
+      chord_fractions_.push_back(std::clamp((k * half - a.position[axis]) / d[axis], 0.0, 1.0));
+    }
+  }
+  const int steps = static_cast<int>(std::ceil(d.norm() / (kChordSpacingCells * geometry.cell)));
+  for (int j = 1; j < steps; ++j) chord_fractions_.push_back(static_cast<double>(j) / steps);
+  std::sort(chord_fractions_.begin(), chord_fractions_.end());
+  const double turn = wrapAngle(b.heading - a.heading);
+  for (std::size_t j = 1; j < chord_fractions_.size(); ++j) {
+    const double f = 0.5 * (chord_fractions_[j - 1] + chord_fractions_[j]);
+    const Eigen::Vector2d p = a.position + f * d;
+    if (problem_->vehicle->compute({p.x(), p.y(), a.heading + f * turn}, chord_workspace_,
+                                   chord_attitude_) != models::AttitudeStatus::kOk) {
+      return false;
+    }
   }
   return true;
 }
@@ -209,6 +258,7 @@ ExtensionStatus ExtensionIntegrator::extend(const PlannerState& from,
     if (!geometry.contains(next.position)) return fail(ExtensionStatus::kOffMap);
     if (segmentBlocked(point.position, next.position)) return fail(ExtensionStatus::kLethal);
     if (!attitudeAt(next, status)) return fail(status);
+    if (!chordPlaceable(point, next)) return fail(ExtensionStatus::kOffMap);
     turned += std::abs(angle);
     if (turned > kMaxTurn) return fail(ExtensionStatus::kUnreachable);
     segment_lengths_.push_back(h);

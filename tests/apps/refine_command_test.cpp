@@ -17,6 +17,7 @@
 #include "terratraj/apps/cli.hpp"
 #include "terratraj/models/trajectory_csv.hpp"
 #include "terratraj/terrain/raster_io.hpp"
+#include "terratraj/terrain/terrain_surface.hpp"
 
 namespace terratraj::apps {
 namespace {
@@ -166,6 +167,39 @@ TEST_F(RefineCommandTest, SolveBesideNoDataOnTheGullyConverges) {
   EXPECT_TRUE(json["check"]["ok"].get<bool>());
   EXPECT_THAT(json["initial_guess"].get<std::string>(), HasSubstr("search"));
   EXPECT_LT(json["iterations"].get<int>(), 300);
+}
+
+// Beside no data the surface is undefined within a few cells (3 m each on the gully): the PRM
+// checks the vehicle's placement along the chords between its samples there, so every point
+// between two rows of its route is on the terrain (a transcription's guess interpolates them;
+// before 2026-12-07 a refinement of this route failed with "the rover cannot be placed").
+TEST_F(RefineCommandTest, ThePrmsRouteBesideNoDataIsOnTheTerrainBetweenItsRows) {
+  const std::string gully = std::string(TERRATRAJ_SHARED_DATA_DIR) + "/west_bijou_gully.asc";
+  const std::string problem = write(
+      "gully.yaml", "terrain:\n  file: " + gully +
+                        "\n  frame: world\n  obstacles: {max_slope_deg: 25}\n"
+                        "vehicle: {model: point}\n"
+                        "start: {x: 559727, y: 4380460, heading_deg: 0}\n"
+                        "goal:  {x: 559745, y: 4380440, heading_deg: -90}\n"
+                        "planner: {kind: prm, time_limit_s: 60, max_iterations: 9000, seed: 1}\n");
+  const CliRun r = run({"plan", problem, "--out-dir", path("prm"), "--json"});
+  ASSERT_EQ(r.status, kExitSuccess) << r.err << r.out;
+  const terrain::ElevationMap map = terrain::loadElevationMap(gully);
+  const terrain::TerrainSurface surface(map, terrain::kDefaultInterpolation);
+  const models::Trajectory route = models::readTrajectoryCsv(path("prm/solution_0.csv"));
+  ASSERT_GE(route.samples.size(), 2u);
+  int checked = 0;
+  for (std::size_t i = 1; i < route.samples.size(); ++i) {
+    const Eigen::Vector2d a(route.samples[i - 1].x, route.samples[i - 1].y);
+    const Eigen::Vector2d b(route.samples[i].x, route.samples[i].y);
+    const int steps = static_cast<int>(std::ceil((b - a).norm() / 0.01));
+    for (int j = 0; j <= steps; ++j, ++checked) {
+      const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(j) / std::max(steps, 1));
+      ASSERT_TRUE(surface.height(p).has_value()) << "no terrain at (" << p.x() << ", " << p.y()
+                                                 << ") between rows " << i << " and " << i + 1;
+    }
+  }
+  EXPECT_GT(checked, 1000);
 }
 
 // The PRM's route after 0.5 s is already near the fastest: its refinement converges, reaches the

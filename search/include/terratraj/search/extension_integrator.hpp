@@ -10,12 +10,15 @@
 // enters the next patch at the surface point under its end position, its map heading taken
 // from the direction of motion. Checked at every sample: the map (no data, off the map), the
 // lethal layer (every cell the segment between two samples touches, conservatively), pitch and
-// roll from the vehicle's attitude model (constraints (3), (4)). Speed-dependent constraints
+// roll from the vehicle's attitude model (constraints (3), (4)); near no data, also that the
+// vehicle can be placed along the chord between two samples (the surface is undefined beside
+// no data, and a path's rows are joined by chords). Speed-dependent constraints
 // become speed caps for the profile: v_max (5), omega_max and kappa_max (1), the curvature
 // rate sigma_max (1), and the tables (v_max by pitch, by roll x curvature); the profile keeps
 // |dv/dt| <= a_max (6). Not allocating once its buffers have grown.
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -107,6 +110,11 @@ class ExtensionIntegrator {
   bool attitudeAt(PathPoint& point, ExtensionStatus& status);
   // Whether the straight segment between two positions touches a lethal or no-data cell.
   bool segmentBlocked(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
+  // Whether the vehicle can be placed all along the chord between two samples (every quarter
+  // cell, heading interpolated), checked only where either end's cell is near no data: a
+  // path's rows are joined by chords (a transcription's guess interpolates them), and beside no
+  // data the surface is undefined within a few cells (TerrainSurface::stencilReach).
+  bool chordPlaceable(const PathPoint& a, const PathPoint& b);
   // Speed cap [m/s] at a sample from v_max, omega_max and the tables.
   double pointCap(const PathPoint& point) const;
 
@@ -118,6 +126,12 @@ class ExtensionIntegrator {
   SpeedProfile profile_;
   std::vector<double> segment_lengths_;
   std::vector<double> caps_;
+  /// Per cell, 1 within the surface's stencil reach plus a footprint margin (kFootprintReachM)
+  /// of a no-data cell (terrain::noDataBand); empty when the map has no no data.
+  std::vector<std::uint8_t> near_no_data_;
+  models::AttitudeWorkspace chord_workspace_;  // apart: the samples' warm starts stay as they were
+  models::AttitudeResult chord_attitude_;
+  std::vector<double> chord_fractions_;  // where along a chord its points are checked
 };
 
 }  // namespace terratraj::search
