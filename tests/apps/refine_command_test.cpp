@@ -71,6 +71,19 @@ class RefineCommandTest : public ::testing::Test {
   fs::path dir_;
 };
 
+const std::string kGullyFile = std::string(TERRATRAJ_SHARED_DATA_DIR) + "/west_bijou_gully.asc";
+
+// A point rover beside no data on the gully (3 m cells), 25 deg slopes lethal; `extra` adds
+// keys.
+std::string gullyYaml(const std::string& extra) {
+  return "terrain:\n  file: " + kGullyFile +
+         "\n  frame: world\n  obstacles: {max_slope_deg: 25}\n"
+         "vehicle: {model: point}\n"
+         "start: {x: 559727, y: 4380460, heading_deg: 0}\n"
+         "goal:  {x: 559745, y: 4380440, heading_deg: -90}\n" +
+         extra;
+}
+
 // Checks a refined trajectory from its CSV alone: from the start to the goal, within v_max.
 void expectReachesTheGoal(const std::string& csv) {
   const models::Trajectory t = models::readTrajectoryCsv(csv);
@@ -153,13 +166,8 @@ TEST_F(RefineCommandTest, PlanRefineTakesACoarseLatticesCandidateFromAnywhereInT
 // region in the refiner's clearance (tried, reverted) stalled it at 500 iterations. The
 // search's budget is planner.time_limit_s (its first solution ends it).
 TEST_F(RefineCommandTest, SolveBesideNoDataOnTheGullyConverges) {
-  const std::string problem = write(
-      "gully.yaml", "terrain:\n  file: " + std::string(TERRATRAJ_SHARED_DATA_DIR) +
-                        "/west_bijou_gully.asc\n  frame: world\n  obstacles: {max_slope_deg: 25}\n"
-                        "vehicle: {model: point}\n"
-                        "start: {x: 559727, y: 4380460, heading_deg: 0}\n"
-                        "goal:  {x: 559745, y: 4380440, heading_deg: -90}\n"
-                        "solver: {time_limit_s: 120}\nplanner: {time_limit_s: 20}\n");
+  const std::string problem =
+      write("gully.yaml", gullyYaml("solver: {time_limit_s: 120}\nplanner: {time_limit_s: 20}\n"));
   const CliRun r = run({"solve", problem, "--out", path("t.csv"), "--json"});
   ASSERT_EQ(r.status, kExitSuccess) << r.err << r.out;
   const nlohmann::json json = nlohmann::json::parse(r.out);
@@ -174,17 +182,12 @@ TEST_F(RefineCommandTest, SolveBesideNoDataOnTheGullyConverges) {
 // between two rows of its route is on the terrain (a transcription's guess interpolates them;
 // before 2026-12-07 a refinement of this route failed with "the rover cannot be placed").
 TEST_F(RefineCommandTest, ThePrmsRouteBesideNoDataIsOnTheTerrainBetweenItsRows) {
-  const std::string gully = std::string(TERRATRAJ_SHARED_DATA_DIR) + "/west_bijou_gully.asc";
-  const std::string problem = write(
-      "gully.yaml", "terrain:\n  file: " + gully +
-                        "\n  frame: world\n  obstacles: {max_slope_deg: 25}\n"
-                        "vehicle: {model: point}\n"
-                        "start: {x: 559727, y: 4380460, heading_deg: 0}\n"
-                        "goal:  {x: 559745, y: 4380440, heading_deg: -90}\n"
-                        "planner: {kind: prm, time_limit_s: 60, max_iterations: 9000, seed: 1}\n");
+  const std::string problem =
+      write("gully.yaml",
+            gullyYaml("planner: {kind: prm, time_limit_s: 60, max_iterations: 9000, seed: 1}\n"));
   const CliRun r = run({"plan", problem, "--out-dir", path("prm"), "--json"});
   ASSERT_EQ(r.status, kExitSuccess) << r.err << r.out;
-  const terrain::ElevationMap map = terrain::loadElevationMap(gully);
+  const terrain::ElevationMap map = terrain::loadElevationMap(kGullyFile);
   const terrain::TerrainSurface surface(map, terrain::kDefaultInterpolation);
   const models::Trajectory route = models::readTrajectoryCsv(path("prm/solution_0.csv"));
   ASSERT_GE(route.samples.size(), 2u);
