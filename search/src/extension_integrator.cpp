@@ -203,6 +203,7 @@ ExtensionStatus ExtensionIntegrator::extend(const PlannerState& from,
   };
   // Cold start for every extension, so that re-running an edge reproduces it exactly.
   workspace_.has_warm_start = false;
+  chord_workspace_.has_warm_start = false;
   const terrain::TerrainSurface& surface = problem_->vehicle->surface();
   const terrain::GridGeometry& geometry = problem_->map->geometry();
   const double ds = settings_.delta_g;
