@@ -15,6 +15,10 @@ FourWheelAttitudeModel::FourWheelAttitudeModel(const terrain::TerrainSurface& su
   }
 }
 
+double FourWheelAttitudeModel::samplingRadius() const {
+  return 0.5 * std::hypot(geometry_.wheelbase, geometry_.track);
+}
+
 AttitudeStatus FourWheelAttitudeModel::compute(const PlanarPose& pose,
                                                AttitudeWorkspace& /*workspace*/,
                                                AttitudeResult& result) const {

@@ -1,6 +1,7 @@
 #include "terratraj/models/rocker_bogie_attitude_model.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 
 #include <cmath>
 #include <stdexcept>
@@ -77,6 +78,16 @@ RockerBogieAttitudeModel::RockerBogieAttitudeModel(const terrain::TerrainSurface
       !(options.max_joint_angle > 0.0) || !(options.max_tilt > 0.0)) {
     throw std::invalid_argument("rocker_bogie: invalid solver options");
   }
+}
+
+double RockerBogieAttitudeModel::samplingRadius() const {
+  // The surface is sampled under the wheel centres; rotating the body only shortens their
+  // planar offsets.
+  const double to_pivot = geometry_.bogie_pivot.norm();
+  const double in_plane =
+      std::max({geometry_.rear_wheel.norm(), to_pivot + geometry_.front_wheel.norm(),
+                to_pivot + geometry_.middle_wheel.norm()});
+  return std::hypot(in_plane, geometry_.half_track);
 }
 
 Eigen::Matrix<double, 3, 6> RockerBogieAttitudeModel::wheelCentresInBody(

@@ -3,6 +3,7 @@
 #include <nvector/nvector_serial.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -193,7 +194,13 @@ class RoverIntegrator::CvodesSession {
     N_VConst(0.0, y_);
     Eigen::Map<Eigen::Vector3d>(N_VGetArrayPointer(y_)) = initial;
     const bool with_sensitivities = ys_ != nullptr;
+    // CVODES takes a failed evaluation inside its corrector as recoverable and retries a
+    // shorter step: where the solution itself leaves the terrain it would shrink the step past
+    // what double precision can advance (1e-14 s at 11 s on the gully, a million steps). A
+    // step shorter than 1e-12 of the duration (at least 1e-12 s) ends the run instead, with
+    // the placement's failure as the reason.
     if (CVodeReInit(memory_, 0.0, y_) != CV_SUCCESS ||
+        CVodeSetMinStep(memory_, 1e-12 * std::max(1.0, duration)) != CV_SUCCESS ||
         CVodeSetStopTime(memory_, duration) != CV_SUCCESS) {
       fail(result, IntegrationStatus::kSolverFailure, "CVODES re-initialisation failed");
       return;
@@ -297,6 +304,9 @@ class RoverIntegrator::CvodesSession {
       }
       last_good_time_ = t_internal;
       last_good_state_ = Eigen::Map<const Eigen::Vector3d>(N_VGetArrayPointer(y_));
+      // A failed evaluation CVODES recovered from (a trial step beyond where the vehicle can be
+      // placed, retried shorter) is not this run's failure.
+      data_.failure = AttitudeStatus::kOk;
     }
     return true;
   }

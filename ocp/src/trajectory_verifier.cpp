@@ -117,8 +117,11 @@ VerifiedTrajectory resimulate(const models::TerrainFollowingModel& vehicle,
   out.trajectory = result.samples;
   fillCurvatureAtRest(out.trajectory);
   if (result.status != models::IntegrationStatus::kOk) {
+    out.off_terrain = result.status == models::IntegrationStatus::kNoTerrain;
     out.message = std::string("re-simulation: ") + result.message +
-                  " at t = " + std::to_string(result.t_reached) + " s";
+                  " at t = " + std::to_string(result.t_reached) + " s, (" +
+                  std::to_string(result.final_state.x()) + ", " +
+                  std::to_string(result.final_state.y()) + ") m";
     return out;
   }
   out.ok = true;

@@ -264,7 +264,19 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
                               : 0.0,
                           out.status, out.reason, out.solution.result.iterations});
     if (out.status == SolveStatus::kConverged) break;
-    if (out.solution.result.status != SolveStatus::kConverged || !out.verified.ok) break;
+    if (out.solution.result.status != SolveStatus::kConverged) break;
+    if (!out.verified.ok) {
+      // Between its points the trajectory left the terrain (beside no data, where the clearance
+      // it kept at the points is all that holds it): once more with the clearance floor.
+      if (!out.verified.off_terrain || transcription.model.clearance.map == nullptr ||
+          !(transcription.model.clearance.min_clearance < options.clearance_floor)) {
+        break;
+      }
+      transcription.model.clearance.min_clearance = options.clearance_floor;
+      start = out.solution.asGuess();
+      transcription.barrier = options.resolve_barrier;
+      continue;
+    }
     start = out.solution.asGuess();
     transcription.barrier = options.resolve_barrier;
     // A curvature rule broken at rest: the rows that hold it there.

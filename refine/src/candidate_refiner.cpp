@@ -73,6 +73,13 @@ double RefinementResult::costRatio() const {
   return refined_figures->cost / candidate_figures->cost;
 }
 
+namespace {
+// Beyond the vehicle's sampling radius, how far the optimiser keeps from where the surface is
+// undefined beside no data [m]: its constraints hold within Ipopt's tolerance, and the region's
+// edge itself may be undefined.
+constexpr double kNoDataEdgeMarginM = 0.01;
+}  // namespace
+
 CandidateRefiner::CandidateRefiner(const PlanningProblem& problem,
                                    const ocp::BoundaryValueProblem& bvp,
                                    const ReferenceFrames& frames, const RefinementOptions& options)
@@ -80,7 +87,8 @@ CandidateRefiner::CandidateRefiner(const PlanningProblem& problem,
       bvp_(&bvp),
       frames_(&frames),
       options_(options),
-      clearance_(*problem.map, 1e3, problem.vehicle->surface().stencilReach()),
+      clearance_(*problem.map, 1e3, problem.vehicle->surface().stencilReach(),
+                 problem.vehicle->samplingRadius() + kNoDataEdgeMarginM),
       candidate_requirements_(requirementsOf(problem)),
       refined_requirements_(ocp::solveRequirements(*problem.vehicle, bvp,
                                                    options.parametric.criteria, problem.map)) {}

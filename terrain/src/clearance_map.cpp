@@ -42,31 +42,18 @@ void transform1d(const double* f, int n, double* d, std::vector<int>& v, std::ve
   }
 }
 
-}  // namespace
-
-ClearanceMap::ClearanceMap(const ElevationMap& map, double max_distance, int no_data_reach)
-    : geometry_(map.geometry()) {
-  const int rows = geometry_.rows, cols = geometry_.cols;
-  // Larger than any squared distance on the grid: "no obstacle in this line yet".
+// Squared Euclidean distance, in cells, from every cell centre to the nearest marked one (0 on
+// them): the separable transform, along each row and then along each column.
+std::vector<double> squaredDistances(const GridGeometry& g,
+                                     const std::vector<std::uint8_t>& marked) {
+  const int rows = g.rows, cols = g.cols;
+  // Larger than any squared distance on the grid: "no marked cell in this line yet".
   const double far =
       4.0 * (static_cast<double>(rows) * rows + static_cast<double>(cols) * cols) + 1.0;
-  std::vector<double> squared(geometry_.cellCount(), far);
-  const std::vector<std::uint8_t> band =
-      no_data_reach > 0 ? noDataBand(map, no_data_reach) : std::vector<std::uint8_t>();
-  bool any = false;
-  for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < cols; ++c) {
-      const CellIndex cell{r, c};
-      if (map.isLethal(cell) || map.isNoData(cell) ||
-          (!band.empty() && band[geometry_.linearIndex(cell)] != 0)) {
-        squared[geometry_.linearIndex(cell)] = 0.0;
-        any = true;
-      }
-    }
+  std::vector<double> squared(g.cellCount(), far);
+  for (std::size_t i = 0; i < squared.size(); ++i) {
+    if (marked[i] != 0) squared[i] = 0.0;
   }
-  distance_.assign(geometry_.cellCount(), max_distance);
-  has_impassable_ = any;
-  if (!any) return;
   const int longest = std::max(rows, cols);
   std::vector<int> v(static_cast<std::size_t>(longest));
   std::vector<double> z(static_cast<std::size_t>(longest) + 1);
@@ -78,15 +65,64 @@ ClearanceMap::ClearanceMap(const ElevationMap& map, double max_distance, int no_
   }
   for (int c = 0; c < cols; ++c) {  // then along each column
     for (int r = 0; r < rows; ++r)
-      line[static_cast<std::size_t>(r)] = squared[geometry_.linearIndex({r, c})];
+      line[static_cast<std::size_t>(r)] = squared[g.linearIndex({r, c})];
     transform1d(line.data(), rows, out.data(), v, z);
     for (int r = 0; r < rows; ++r)
-      squared[geometry_.linearIndex({r, c})] = out[static_cast<std::size_t>(r)];
+      squared[g.linearIndex({r, c})] = out[static_cast<std::size_t>(r)];
   }
-  for (std::size_t i = 0; i < squared.size(); ++i) {
+  return squared;
+}
+
+}  // namespace
+
+ClearanceMap::ClearanceMap(const ElevationMap& map, double max_distance, int no_data_reach,
+                           double no_data_margin_m)
+    : geometry_(map.geometry()) {
+  const double h = geometry_.cell;
+  distance_.assign(geometry_.cellCount(), max_distance);
+  // The impassable cells: lethal and no data, each a square; a point's clearance is about the
+  // distance to the nearest one's edge.
+  std::vector<std::uint8_t> impassable(geometry_.cellCount(), 0);
+  for (int r = 0; r < geometry_.rows; ++r) {
+    for (int c = 0; c < geometry_.cols; ++c) {
+      const CellIndex cell{r, c};
+      if (map.isLethal(cell) || map.isNoData(cell)) {
+        impassable[geometry_.linearIndex(cell)] = 1;
+        has_impassable_ = true;
+      }
+    }
+  }
+  if (!has_impassable_) return;
+  const std::vector<double> to_impassable = squaredDistances(geometry_, impassable);
+  for (std::size_t i = 0; i < distance_.size(); ++i) {
+    distance_[i] = std::min(
+        distance_[i], to_impassable[i] == 0.0 ? -0.5 * h : h * (std::sqrt(to_impassable[i]) - 0.5));
+  }
+  // Where the surface is undefined beside no data: every point whose stencil holds a no-data
+  // cell, the square of half-width `no_data_reach` cells around each no-data cell's centre.
+  // The band's cell centres are the grid points of those squares, so the distance from a cell
+  // centre outside the band to the nearest band centre is its exact distance to the undefined
+  // region, and bilinear interpolation between the centres puts the zero on the region's edge.
+  // Inside the band the clearance is minus the distance to the nearest centre outside it, plus
+  // one cell (zero on the band's edge).
+  const std::vector<std::uint8_t> band =
+      no_data_reach > 0 ? noDataBand(map, no_data_reach) : std::vector<std::uint8_t>();
+  if (band.empty()) return;
+  std::vector<std::uint8_t> outside(band.size());
+  for (std::size_t i = 0; i < band.size(); ++i) outside[i] = band[i] == 0 ? 1 : 0;
+  // The distance is convex, so bilinear interpolation overestimates it, near a square's corner
+  // only: by up to 1 - 1/sqrt(2) of the value within half a cell of it, by under 0.15 cell
+  // anywhere. The level kept for the margin allows for that, so that a positive clearance is
+  // at least `no_data_margin_m` from the region wherever it is read.
+  const double offset = no_data_margin_m > 0.0 ? std::min(std::sqrt(2.0) * no_data_margin_m,
+                                                          no_data_margin_m + 0.15 * h)
+                                               : 0.0;
+  const std::vector<double> to_band = squaredDistances(geometry_, band);
+  const std::vector<double> to_outside = squaredDistances(geometry_, outside);
+  for (std::size_t i = 0; i < distance_.size(); ++i) {
     const double d =
-        squared[i] == 0.0 ? -0.5 * geometry_.cell : geometry_.cell * (std::sqrt(squared[i]) - 0.5);
-    distance_[i] = std::min(d, max_distance);
+        band[i] != 0 ? -h * (std::sqrt(to_outside[i]) - 1.0) : h * std::sqrt(to_band[i]);
+    distance_[i] = std::min(distance_[i], d - offset);
   }
 }
 

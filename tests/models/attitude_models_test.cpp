@@ -9,6 +9,7 @@
 #include "terratraj/models/four_wheel_attitude_model.hpp"
 #include "terratraj/models/point_attitude_model.hpp"
 #include "terratraj/models/rocker_bogie_attitude_model.hpp"
+#include "terratraj/terrain/clearance_map.hpp"
 #include "terratraj/terrain/tangent_plane_patch.hpp"
 #include "terratraj/terrain/terrain_generator.hpp"
 
@@ -196,6 +197,44 @@ TEST(AttitudeModels, OffTheMapOrOverNoDataIsAStatusNotACrash) {
     }
     EXPECT_EQ(model->compute({10.125, 10.125, 0.0}, workspace, result), AttitudeStatus::kNoTerrain);
     EXPECT_EQ(model->compute({nan, 3.0, 0.0}, workspace, result), AttitudeStatus::kNoTerrain);
+  }
+}
+
+// The clearance the refiner keeps beside no data (terrain::ClearanceMap with the surface's
+// stencil reach, less the model's sampling radius) is where the model can be placed: every pose
+// with a positive clearance, at any heading, rests on the surface, and the bound is tight (poses
+// up to 10 cm inside it fail).
+TEST(AttitudeModels, ThePositiveClearanceBesideNoDataIsWhereTheModelCanBePlaced) {
+  ElevationMap map = roughMap();
+  for (int r = 40; r <= 42; ++r) map.elevation()(r, 50) = std::numeric_limits<float>::quiet_NaN();
+  const TerrainSurface surface(map, Interpolation::kCubicBSpline);
+  const PointAttitudeModel point(surface);
+  const FourWheelAttitudeModel four_wheel(surface, FourWheelGeometry{});
+  const RockerBogieAttitudeModel rocker_bogie(surface);
+  const double centre_x = map.geometry().cellCenter({41, 50}).x();
+  const double centre_y = map.geometry().cellCenter({41, 50}).y();
+  for (const TerrainFollowingModel* model :
+       std::initializer_list<const TerrainFollowingModel*>{&point, &four_wheel, &rocker_bogie}) {
+    SCOPED_TRACE(model->name());
+    const terrain::ClearanceMap clearance(map, 1e3, surface.stencilReach(),
+                                          model->samplingRadius());
+    int placed = 0, failed_within = 0;
+    for (const PlanarPose& pose : randomPoses(20000, -2.5, 2.5, 7)) {
+      const PlanarPose at{centre_x + pose.x, centre_y + pose.y, pose.heading};
+      const std::optional<terrain::Clearance> c = clearance.at({at.x, at.y});
+      ASSERT_TRUE(c.has_value());
+      AttitudeWorkspace workspace;
+      AttitudeResult result;
+      const AttitudeStatus status = model->compute(at, workspace, result);
+      if (c->distance > 1e-9) {
+        EXPECT_NE(status, AttitudeStatus::kNoTerrain) << at.x << ", " << at.y << ", " << at.heading;
+        ++placed;
+      } else if (c->distance > -0.1 && status == AttitudeStatus::kNoTerrain) {
+        ++failed_within;
+      }
+    }
+    EXPECT_GT(placed, 1000);
+    EXPECT_GT(failed_within, 10);
   }
 }
 

@@ -332,6 +332,31 @@ TEST(RoverIntegrator, StopsAtItsDeadline) {
                            PolynomialControls({0.0}, {0.1}), 1e6);
 }
 
+// Beside no data the surface ends inside the map (the B-spline reads two cells around a point).
+// CVODES takes a failed evaluation in its corrector as recoverable and shortens the step; where
+// the solution itself drives off the surface it used to shrink it to 1e-14 s and grind through
+// a million steps (a refinement on the gully). The minimum step ends the run at the edge.
+TEST(RoverIntegrator, StopsAtTheEdgeOfTheSurfaceBesideNoData) {
+  ElevationMap map = generated(terrain::TerrainKind::kHills, 64);
+  for (int r = 0; r < map.geometry().rows; ++r) {
+    for (int c = 0; c <= 9; ++c) map.elevation()(r, c) = std::nanf("");
+  }
+  const TerrainSurface surface(map, Interpolation::kCubicBSpline);
+  const PointAttitudeModel model(surface);
+  const RoverKinematics kinematics(model);
+  const double edge = (9 + 2 + 0.5) * map.geometry().cell;  // u < 11 reads a no-data cell
+  for (const double heading : {M_PI, M_PI - 0.6, M_PI + 0.3}) {
+    SCOPED_TRACE(heading);
+    RoverIntegrator integrator(kinematics, cvodes(1e-8));
+    IntegrationResult result;
+    integrator.integrate({8.0, 8.0, heading}, PolynomialControls({1.0}, {0.0}), 10.0,
+                         uniformSampleTimes(10.0, 0.05), result);
+    EXPECT_EQ(result.status, IntegrationStatus::kNoTerrain) << result.message;
+    EXPECT_LT(result.steps, 2000);
+    EXPECT_NEAR(result.final_state.x(), edge, 0.05);
+  }
+}
+
 TEST(RoverIntegrator, FailuresAreStatusesWithReasons) {
   const ElevationMap map = generated(terrain::TerrainKind::kHills, 64);
   const TerrainSurface surface(map, Interpolation::kBicubic);

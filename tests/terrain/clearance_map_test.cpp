@@ -74,7 +74,20 @@ TEST(NoDataBand, IsTheSquareWithinReachAndTheClearanceStartsAtIt) {
   const ClearanceMap banded(map, 1e3, 2);
   EXPECT_NEAR(plain.cellClearance({10, 22}), 2.0 * g.cell - 0.5 * g.cell, 1e-9);
   EXPECT_LE(banded.cellClearance({10, 22}), 0.0);
-  EXPECT_NEAR(banded.cellClearance({10, 25}), 3.0 * g.cell - 0.5 * g.cell, 1e-9);
+  // Beyond the band, the distance to the square where the surface is undefined: 3 cells from
+  // the band's edge at column 22 (not to the edge of a band cell, half a cell farther).
+  EXPECT_NEAR(banded.cellClearance({10, 25}), 3.0 * g.cell, 1e-9);
+  EXPECT_NEAR(banded.cellClearance({13, 25}), std::hypot(1.0, 3.0) * g.cell, 1e-9);
+  // Zero on the square's edge (the band's outer cell centres), negative inside it, and the
+  // margin subtracted.
+  EXPECT_NEAR(banded.cellClearance({10, 22}), 0.0, 1e-9);
+  EXPECT_NEAR(banded.cellClearance({10, 21}), -g.cell, 1e-9);
+  const Eigen::Vector2d between = 0.5 * (g.cellCenter({10, 22}) + g.cellCenter({10, 23}));
+  EXPECT_NEAR(banded.at(between)->distance, 0.5 * g.cell, 1e-9);
+  // A margin of 0.3 m on 0.5 m cells: 0.3 m plus 0.15 cell for the interpolation near corners.
+  const ClearanceMap margined(map, 1e3, 2, 0.3);
+  EXPECT_NEAR(margined.cellClearance({10, 25}), 3.0 * g.cell - 0.375, 1e-9);
+  EXPECT_NEAR(margined.cellClearance({10, 22}), -0.375, 1e-9);
 }
 
 }  // namespace

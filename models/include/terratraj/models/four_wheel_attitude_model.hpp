@@ -31,6 +31,8 @@ class FourWheelAttitudeModel final : public TerrainFollowingModel {
                          AttitudeResult& result) const override;
   const char* name() const override { return "four_wheel"; }
   const terrain::TerrainSurface& surface() const override { return surface_; }
+  /// Half the diagonal between the wheels [m].
+  double samplingRadius() const override;
   const FourWheelGeometry& geometry() const { return geometry_; }
 
  private:

@@ -17,6 +17,7 @@ class PointAttitudeModel final : public TerrainFollowingModel {
                          AttitudeResult& result) const override;
   const char* name() const override { return "point"; }
   const terrain::TerrainSurface& surface() const override { return surface_; }
+  double samplingRadius() const override { return 0.0; }  ///< the point itself
 
  private:
   terrain::TerrainSurface surface_;

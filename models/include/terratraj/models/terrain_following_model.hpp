@@ -41,6 +41,10 @@ class TerrainFollowingModel {
   virtual const char* name() const = 0;
   /// The surface the model rests on.
   virtual const terrain::TerrainSurface& surface() const = 0;
+  /// An upper bound [m] on the planar distance from the reference point (pose.x, pose.y) to
+  /// every point where compute() samples the surface, for any heading, attitude and suspension
+  /// configuration: where the surface is undefined within it, compute() may fail.
+  virtual double samplingRadius() const = 0;
 };
 
 }  // namespace terratraj::models

@@ -17,6 +17,7 @@ class FlatGroundModel final : public models::TerrainFollowingModel {
                                  models::AttitudeResult& result) const override;
   const char* name() const override { return "flat"; }
   const terrain::TerrainSurface& surface() const override { return *surface_; }
+  double samplingRadius() const override { return 0.0; }  ///< never samples
 
  private:
   const terrain::TerrainSurface* surface_;

@@ -27,6 +27,9 @@ struct VerificationOptions {
 /// What the re-simulation found.
 struct VerifiedTrajectory {
   bool ok = false;  ///< false: the trajectory could not be re-simulated (message)
+  /// When not ok: the re-simulation left the terrain (off the map, or where no data leaves the
+  /// surface undefined) rather than failing otherwise.
+  bool off_terrain = false;
   std::string message;
   models::Trajectory trajectory;  ///< samples every sample_dt and at t_f (the last row)
   Eigen::Vector3d terminal_error = Eigen::Vector3d::Zero();  ///< reached - goal, heading wrapped

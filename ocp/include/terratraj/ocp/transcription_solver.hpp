@@ -51,7 +51,8 @@ struct TranscriptionSolveOptions {
   /// seeds on the real DEMs it stalled re-solves with widened margins (docs/benchmarks.md).
   TranscriptionBarrier resolve_barrier = TranscriptionBarrier::kAdaptive;
   int max_intervals = 800;  ///< mesh refinement stops here, >= transcription.intervals
-  /// A re-simulation over a lethal cell raises the clearance constraint (when
+  /// A re-simulation over a lethal cell, or one that leaves the terrain between the points,
+  /// raises the clearance constraint (when
   /// transcription.model.clearance has a map) to this [m], >= 0.
   double clearance_floor = 0.0;
   std::optional<double> time_limit_s;       ///< wall clock of all rounds [s], >= 0

@@ -51,8 +51,9 @@ struct TrajectoryFigures {
   double length_m = 0.0;    ///< planar length [m]
   double max_abs_pitch = 0.0, max_abs_roll = 0.0;  ///< [rad]
   double max_speed = 0.0;                          ///< [m/s]
-  /// Smallest clearance from impassable cells over the samples [m]; +infinity on a map
-  /// without any.
+  /// Smallest clearance over the samples [m]: from impassable cells, and from where the
+  /// surface is undefined beside no data less the vehicle's sampling radius
+  /// (terrain::ClearanceMap); +infinity on a map without any impassable cell.
   double min_clearance_m = 0.0;
   /// The independent re-check: for a candidate against the planning problem (its goal region),
   /// for a refinement the verdict's (the exact goal within the solver's tolerances).

@@ -22,13 +22,19 @@ struct Clearance {
 /// Clearance from the impassable cells of one map. Immutable after construction.
 class ClearanceMap {
  public:
-  /// Distance transform of `map`'s lethal and no-data cells, and of the cells within
-  /// `no_data_reach` cells of no data (noDataBand(): pass the surface's stencilReach() to keep
-  /// an optimiser where the surface is defined). The clearance of a cell centre is the distance
-  /// to the nearest impassable cell centre minus half a cell (about the distance to that cell's
-  /// edge), negative inside one. A map with no impassable cell gets `max_distance` everywhere.
-  /// Throws std::bad_alloc only.
-  explicit ClearanceMap(const ElevationMap& map, double max_distance = 1e3, int no_data_reach = 0);
+  /// Distance transform of `map`'s lethal and no-data cells: the clearance of a cell centre is
+  /// the distance to the nearest such cell centre minus half a cell (about the distance to that
+  /// cell's edge), negative inside one. With `no_data_reach` > 0 (pass the surface's
+  /// stencilReach() to keep an optimiser where the surface is defined), also the distance to
+  /// where the surface is undefined beside no data, the square of half-width `no_data_reach`
+  /// cells around each no-data cell's centre (exact at the cell centres and on the square's
+  /// edges, bilinear between), less a margin [m] for the vehicle's wheels around its
+  /// reference point: a positive clearance read anywhere is at least `no_data_margin_m` from
+  /// the region (the margin subtracted is up to sqrt(2) times that, for the interpolation's
+  /// overestimate near the region's corners). The smaller of the two counts. A map with no
+  /// impassable cell gets `max_distance` everywhere. Throws std::bad_alloc only.
+  explicit ClearanceMap(const ElevationMap& map, double max_distance = 1e3, int no_data_reach = 0,
+                        double no_data_margin_m = 0.0);
 
   /// Clearance at a local point [m], bilinear between cell centres (clamped at the borders);
   /// std::nullopt outside the map or for NaN coordinates. Never throws.
