@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "ompl_adapters.hpp"
@@ -29,6 +30,10 @@ struct OmplPeerPlanner::Impl {
   SolutionRecorder recorder;
   double planned_ms = 0.0;
   std::string status = "not run";
+  // The fastest re-integrated solution over the solve() calls since the last clear(): the
+  // problem definition's path after a later call can re-integrate slower than an earlier one
+  // (SST ranks its paths by its own cost; seen under ASan: 40.5 s after 40.145 s).
+  std::optional<search::PlanSolution> best;
 };
 
 void OmplPeerPlanner::Impl::build() {
@@ -144,6 +149,7 @@ const std::string& OmplPeerPlanner::omplStatus() const { return impl_->status; }
 void OmplPeerPlanner::clear() {
   impl_->makePlanner();
   impl_->planned_ms = 0.0;
+  impl_->best.reset();
   impl_->status = "not run";
 }
 
@@ -181,7 +187,12 @@ search::PlanResult OmplPeerPlanner::solve(search::TerminationCondition terminati
     solution.length_m = solution.trajectory.planarLength();
     solution.found_ms =
         result.cost_history.empty() ? m.planned_ms : result.cost_history.back().time_ms;
-    result.solutions.push_back(std::move(solution));
+    // A solution never gets worse when solve() is called again (the planners' interface).
+    if (!m.best || m.best->trajectory.samples.empty() ||
+        (!solution.trajectory.samples.empty() && solution.cost_s < m.best->cost_s)) {
+      m.best = solution;
+    }
+    result.solutions.push_back(*m.best);
     result.status = search::PlanStatus::kSolved;
   } else {
     result.reason = "OMPL: " + m.status;
