@@ -54,9 +54,9 @@ class RockerBogieAttitudeModel final : public TerrainFollowingModel {
                          AttitudeResult& result) const override;
   const char* name() const override { return "rocker_bogie"; }
   const terrain::TerrainSurface& surface() const override { return surface_; }
-  /// Bounds each wheel's reach for any joint angles (a rocker or bogie link turns about its
-  /// pivot, so the wheel stays within its links' summed lengths in the rocker's plane), beside
-  /// half the track, plus the wheel radius [m].
+  /// Bounds each wheel centre's reach for any joint angles (a rocker or bogie link turns about
+  /// its pivot, so the wheel stays within its links' summed lengths in the rocker's plane),
+  /// beside half the track [m]: the surface is sampled under the wheel centres.
   double samplingRadius() const override;
   const RockerBogieGeometry& geometry() const { return geometry_; }
 
