@@ -367,7 +367,8 @@ SingleSolve solveOnce(TranscriptionNlp& nlp, const BoundaryValueProblem& problem
     std::ostringstream why;
     why << "locally infeasible: Ipopt's dual infeasibility stayed above "
         << options.divergence.dual_infeasibility << " for " << options.divergence.window
-        << " iterations (diverging multipliers) with the constraint violation at "
+        << " iterations or rose above " << options.divergence.blow_up
+        << " (diverging multipliers) with the constraint violation at "
         << adapter->lastConstraintViolation();
     outcome = {SolveStatus::kInfeasible, why.str()};
   }
@@ -493,8 +494,10 @@ std::optional<std::string> validateTranscriptionOptions(const DirectTranscriptio
   if (o.model.clearance.map != nullptr && !std::isfinite(o.model.clearance.min_clearance)) {
     return "min_clearance must be finite";
   }
-  if (o.divergence.window < 0 || !(o.divergence.dual_infeasibility > 0.0)) {
-    return "divergence needs window >= 0 and dual_infeasibility > 0";
+  if (o.divergence.window < 0 || !(o.divergence.dual_infeasibility > 0.0) ||
+      !(o.divergence.blow_up >= o.divergence.dual_infeasibility)) {
+    return "divergence needs window >= 0, dual_infeasibility > 0 and blow_up >= "
+           "dual_infeasibility";
   }
   return std::nullopt;
 }

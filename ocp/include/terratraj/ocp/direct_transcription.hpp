@@ -96,8 +96,9 @@ struct DirectTranscriptionOptions {
   /// there as converged (Ipopt status "User_Requested_Stop (stalled ...)"); window 0: never.
   StallAcceptance stall;
   /// A solve whose dual infeasibility stays above a threshold (1e10) for `window` (20)
-  /// iterations in a row has blown up (diverging multipliers): it stops as kInfeasible, the
-  /// reason says so (iteration_divergence.hpp); window 0: never.
+  /// iterations in a row, or rises above `blow_up` (1e12) once, has blown up (diverging
+  /// multipliers): it stops as kInfeasible, the reason says so (iteration_divergence.hpp);
+  /// window 0: never.
   DivergenceStop divergence;
   TranscriptionBarrier barrier = TranscriptionBarrier::kAdaptive;
   double warm_mu_init = 1e-6;  ///< kWarm's first barrier parameter (scaled), > 0
