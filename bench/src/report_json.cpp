@@ -14,6 +14,7 @@ nlohmann::json attemptsJson(const std::vector<refine::SeedAttempt>& attempts) {
                     {"cost", jsonNumber(a.cost)},
                     {"time_ms", a.time_ms},
                     {"budget_s", jsonNumber(a.budget_s)},
+                    {"time_given_s", jsonNumber(a.time_given_s)},
                     {"round", a.round},
                     {"time_limit_reached", a.time_limit_reached}});
   }

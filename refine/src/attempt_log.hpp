@@ -44,6 +44,7 @@ class AttemptLog {
     a.cost = result.verified.ok ? result.verified.cost : std::numeric_limits<double>::quiet_NaN();
     a.time_ms = 1e3 * std::chrono::duration<double>(Clock::now() - attempt_started).count();
     a.budget_s = budget_s;
+    a.time_given_s = time_given_s;
     a.round = round;
     a.time_limit_reached = result.time_limit_reached;
     const int iterations = best_.iterations + result.iterations;
@@ -62,7 +63,9 @@ class AttemptLog {
   SeededSolution& best() { return best_; }
 
   double budget_s = std::numeric_limits<double>::infinity();  ///< of the seed being tried [s]
-  int round = 0;                                              ///< of the seed being tried
+  /// budget_s capped by the solve's time left, for the seed being tried [s]
+  double time_given_s = std::numeric_limits<double>::infinity();
+  int round = 0;  ///< of the seed being tried
 
  private:
   std::function<void(const SeedAttempt&)> on_attempt_;

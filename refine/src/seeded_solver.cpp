@@ -412,6 +412,18 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
   const double first_budget = firstSeedBudget(options);
   // Which steps of each word's chain ended on their own (ChainProgress).
   std::map<const Seed*, ChainProgress> progress;
+  // The time each seed's chain was last given [s]. A seed the clock cut is tried again only
+  // with more: near the solve's deadline its doubled budget is capped by the time left, and a
+  // chain given less time than before ends as it did or sooner (a slope-dwell problem on
+  // davosdorf ran its search seed 14 more times, each with half the time of the one before,
+  // until its 60 s were gone).
+  std::map<const Seed*, double> granted;
+  const auto moreTimeThanBefore = [&](const Seed* seed) {
+    const auto it = granted.find(seed);
+    const std::optional<double> left = deadline.left();
+    return it == granted.end() || !left || *left > it->second;
+  };
+  bool starved = false;  // a cut seed not tried again for want of time
   // One seed's chain within its budget; whether the budget cut it: no convergence gained, a
   // step of a word's chain stopped by the clock or not reached (the search seed: its PRM or
   // refinement stopped by the clock, or its budget used up), and the solve's own clock not run
@@ -422,6 +434,7 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
       log.budget_s = std::ldexp(seed == first ? first_budget : options.seed_time_s, log.round);
       limit = std::min(log.budget_s, limit.value_or(log.budget_s));
     }
+    granted[seed] = log.time_given_s = limit.value_or(std::numeric_limits<double>::infinity());
     const ocp::Deadline within(Clock::now(), limit, options.stop);
     const bool converged_before = log.converged();
     const Clock::time_point t0 = Clock::now();
@@ -479,6 +492,10 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
         continue;
       }
       if (!wanted(seed)) continue;
+      if (log.round > 0 && !moreTimeThanBefore(seed)) {
+        starved = true;
+        continue;
+      }
       if (trySeed(seed)) cut.push_back(seed);
     }
     if (search_deferred && !deadline.over() && wanted(nullptr) && trySeed(nullptr)) {
@@ -501,6 +518,16 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
       why_ended << "the solve's time limit of " << deadline.limit().value_or(0.0) << " s ran out";
     }
     why_ended << " in round " << log.round << " of the seeds' budgets";
+    best.reason = why_ended.str();
+  } else if (!log.empty() && !log.converged() && starved) {
+    // The clock cut seeds that the time left could not give more time than they had.
+    SeededSolution& best = log.best();
+    best.time_limit_reached = true;
+    std::ostringstream why_ended;
+    why_ended << best.reason << "; the solve's time limit of " << deadline.limit().value_or(0.0)
+              << " s left the seeds cut by their budgets no more time than they had before, in "
+                 "round "
+              << log.round - 1 << " of the seeds' budgets";
     best.reason = why_ended.str();
   }
   if (log.empty()) {

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "../terrain/test_maps.hpp"
 #include "terratraj/bench/robustness_sets.hpp"
@@ -149,6 +150,38 @@ TEST_F(SeededSolverTest, SeedsCutByTheirBudgetAreRetriedWithTwiceIt) {
   // The rounds in order: a seed is retried only after every seed has had its budget.
   for (std::size_t i = 1; i < s.attempts.size(); ++i) {
     EXPECT_GE(s.attempts[i].round, s.attempts[i - 1].round);
+  }
+}
+
+// Near the solve's deadline a seed's doubled budget is capped by the time left, and a seed the
+// clock cut is tried again only with more time than it had: with less, its chain would end as
+// it did or sooner. The first word's budget here is most of the time left after the first
+// round (each word's chain is cut by the clock in it), so without the rule the first word was
+// tried again with less time than it had. (In a slow build the first round can use the whole
+// limit; nothing is tried again then.)
+TEST_F(SeededSolverTest, ACutSeedIsTriedAgainOnlyWithMoreTimeThanBefore) {
+  const ocp::BoundaryValueProblem problem = sets::turnBacks(1, 7).front();
+  SeededSolveOptions options;
+  options.time_limit_s = 0.25;
+  options.first_seed_time_s = 0.1;
+  options.seed_time_s = 0.01;
+  const SeededSolution s = solveSeeded(vehicle_, problem, &map_, options);
+  ASSERT_GE(s.attempts.size(), 2u);
+  std::map<std::string, const SeedAttempt*> last;  // per seed and step
+  for (const SeedAttempt& a : s.attempts) {
+    EXPECT_LE(a.time_given_s, a.budget_s) << a.seed;
+    EXPECT_LE(a.time_given_s, *options.time_limit_s) << a.seed;
+    const auto it = last.find(a.seed);
+    if (it != last.end() && it->second->round < a.round) {
+      // 1 ms: the time left is read again when the chain starts.
+      EXPECT_GT(a.time_given_s, it->second->time_given_s - 1e-3)
+          << a.seed << " in round " << a.round << " after round " << it->second->round;
+    }
+    last[a.seed] = &a;
+  }
+  if (s.status != ocp::SolveStatus::kConverged) {
+    EXPECT_TRUE(s.time_limit_reached) << s.reason;
+    EXPECT_NE(s.reason.find("time limit of 0.25 s"), std::string::npos) << s.reason;
   }
 }
 

@@ -81,8 +81,11 @@ struct SeedAttempt {
   std::string reason;
   double cost = 0.0;  ///< verified cost (NaN without a re-simulation)
   double time_ms = 0.0;
-  double budget_s = 0.0;  ///< the wall clock its seed's chain was given [s] (inf: none)
-  int round = 0;          ///< 0: the seed's first budget; r: retried with 2^r times it
+  double budget_s = 0.0;  ///< the wall clock its seed's chain was allotted [s] (inf: none)
+  /// The wall clock its seed's chain was given: budget_s capped by the solve's time left when
+  /// the chain started [s] (inf: none). A chain the clock cut is tried again only with more.
+  double time_given_s = 0.0;
+  int round = 0;  ///< 0: the seed's first budget; r: retried with 2^r times it
   /// Stopped by the clock (SeededSolution::time_limit_reached): a later round may repeat it.
   bool time_limit_reached = false;
 };
