@@ -265,6 +265,9 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
                           out.status, out.reason, out.solution.result.iterations});
     if (out.status == SolveStatus::kConverged) break;
     if (out.solution.result.status != SolveStatus::kConverged) break;
+    // Every further round starts from this one's solution.
+    start = out.solution.asGuess();
+    transcription.barrier = options.resolve_barrier;
     if (!out.verified.ok) {
       // Between its points the trajectory left the terrain (beside no data, where the clearance
       // it kept at the points is all that holds it): once more with the clearance floor.
@@ -273,12 +276,8 @@ VerifiedTranscription solveTranscription(const models::TerrainFollowingModel& ve
         break;
       }
       transcription.model.clearance.min_clearance = options.clearance_floor;
-      start = out.solution.asGuess();
-      transcription.barrier = options.resolve_barrier;
       continue;
     }
-    start = out.solution.asGuess();
-    transcription.barrier = options.resolve_barrier;
     // A curvature rule broken at rest: the rows that hold it there.
     if (!transcription.rest_curvature &&
         (standsStill(problem.start) || standsStill(problem.goal)) &&

@@ -21,9 +21,9 @@ constexpr int kSimpsonIntervals = 4;
 constexpr double kFinalApproachSteps = 4.0;
 // Lateral misses below this fraction of the end tolerance are not corrected.
 constexpr double kLateralSlackFraction = 0.25;
-// How far a vehicle's contact points may reach from its reference point [m]: the chords are
-// checked this far (and the surface's stencil reach) from no data.
-constexpr double kFootprintReachM = 1.0;
+// Slack beyond the vehicle's sampling radius within which the chords are checked near no data
+// [m] (a chord whose ends lie farther out can still pass closer between them).
+constexpr double kChordSlackM = 1.0;
 // Chord checks every this fraction of a cell.
 constexpr double kChordSpacingCells = 0.25;
 
@@ -75,9 +75,10 @@ ExtensionIntegrator::ExtensionIntegrator(const PlanningProblem& problem,
                                          const IntegrationSettings& settings)
     : problem_(&problem), settings_(settings), steering_(problem.limits) {
   const double cell = problem.map->geometry().cell;
+  const double reach_m = problem.vehicle->samplingRadius() + kChordSlackM;
   near_no_data_ =
       terrain::noDataBand(*problem.map, problem.vehicle->surface().stencilReach() +
-                                            static_cast<int>(std::ceil(kFootprintReachM / cell)));
+                                            static_cast<int>(std::ceil(reach_m / cell)));
 }
 
 models::TrajectorySample trajectorySample(const PathPoint& point, double t0) {

@@ -126,8 +126,9 @@ class ExtensionIntegrator {
   SpeedProfile profile_;
   std::vector<double> segment_lengths_;
   std::vector<double> caps_;
-  /// Per cell, 1 within the surface's stencil reach plus a footprint margin (kFootprintReachM)
-  /// of a no-data cell (terrain::noDataBand); empty when the map has no no data.
+  /// Per cell, 1 within the surface's stencil reach plus the vehicle's sampling radius and a
+  /// slack for the chord's length of a no-data cell (terrain::noDataBand); empty when the map
+  /// has no no data.
   std::vector<std::uint8_t> near_no_data_;
   models::AttitudeWorkspace chord_workspace_;  // apart: the samples' warm starts stay as they were
   models::AttitudeResult chord_attitude_;
