@@ -347,6 +347,34 @@ bool bridgeThroughIpopt(const models::TerrainFollowingModel& vehicle,
   return ended;
 }
 
+// When the rounds ended short of a convergence because of the clock, says so beside the best
+// attempt's own reason (which alone reads as if that attempt had the last word): the solve's
+// clock (or a stop) with seeds still cut (`seeds_cut`), or seeds the clock cut that the time
+// left could not give more time than they had (`starved`).
+void explainAnEndShortOfConvergence(const ocp::Deadline& deadline, bool seeds_cut, bool starved,
+                                    AttemptLog& log) {
+  if (log.empty() || log.converged()) return;
+  const bool clock_ended = seeds_cut && deadline.over();
+  if (!clock_ended && !starved) return;
+  SeededSolution& best = log.best();
+  best.time_limit_reached = true;
+  std::ostringstream why_ended;
+  why_ended << best.reason << "; ";
+  if (clock_ended && deadline.stop() != nullptr && deadline.stop()->load()) {
+    why_ended << "stopped in round " << log.round;
+  } else if (clock_ended) {
+    why_ended << "the solve's time limit of " << deadline.limit().value_or(0.0)
+              << " s ran out in round " << log.round;
+  } else {
+    why_ended << "the solve's time limit of " << deadline.limit().value_or(0.0)
+              << " s left the seeds cut by their budgets no more time than they had before, in "
+                 "round "
+              << log.round - 1;
+  }
+  why_ended << " of the seeds' budgets";
+  best.reason = why_ended.str();
+}
+
 // The global seeds as a portfolio. The order: the Dubins words within the attitude limits
 // (shortest first), the search seed (when no word converged and the words are blocked, steep,
 // or the method a transcription), the words across slopes beyond the limits (an optimiser
@@ -505,31 +533,7 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
     order = std::move(cut);
     ++log.round;
   }
-  if (!log.empty() && !log.converged() && !order.empty() && deadline.over()) {
-    // The solve's clock (or a stop) ended the rounds with seeds still cut: say so, beside the
-    // best attempt's own reason, which alone reads as if that attempt had the last word.
-    SeededSolution& best = log.best();
-    best.time_limit_reached = true;
-    std::ostringstream why_ended;
-    why_ended << best.reason << "; ";
-    if (deadline.stop() != nullptr && deadline.stop()->load()) {
-      why_ended << "stopped";
-    } else {
-      why_ended << "the solve's time limit of " << deadline.limit().value_or(0.0) << " s ran out";
-    }
-    why_ended << " in round " << log.round << " of the seeds' budgets";
-    best.reason = why_ended.str();
-  } else if (!log.empty() && !log.converged() && starved) {
-    // The clock cut seeds that the time left could not give more time than they had.
-    SeededSolution& best = log.best();
-    best.time_limit_reached = true;
-    std::ostringstream why_ended;
-    why_ended << best.reason << "; the solve's time limit of " << deadline.limit().value_or(0.0)
-              << " s left the seeds cut by their budgets no more time than they had before, in "
-                 "round "
-              << log.round - 1 << " of the seeds' budgets";
-    best.reason = why_ended.str();
-  }
+  explainAnEndShortOfConvergence(deadline, !order.empty(), starved, log);
   if (log.empty()) {
     log.best().status = ocp::SolveStatus::kInfeasible;
     log.best().reason =
