@@ -440,11 +440,14 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
   const double first_budget = firstSeedBudget(options);
   // Which steps of each word's chain ended on their own (ChainProgress).
   std::map<const Seed*, ChainProgress> progress;
-  // The time each seed's chain was last given [s]. A seed the clock cut is tried again only
-  // with more: near the solve's deadline its doubled budget is capped by the time left, and a
-  // chain given less time than before ends as it did or sooner (a slope-dwell problem on
-  // davosdorf ran its search seed 14 more times, each with half the time of the one before,
-  // until its 60 s were gone).
+  // The time a seed's chain was last given [s], kept only when a retry would run that chain
+  // again as it ran: a word none of whose steps ended on its own in that try (its first step
+  // had the whole time; a step that ended is not repeated, so the steps after it would get more
+  // than they had), the search seed from round 1 on (round 0 refines the PRM's first route
+  // first, a retry its improved route). Such a seed the clock cut is tried again only with more
+  // time: near the solve's deadline its doubled budget is capped by the time left, and with less
+  // its chain ends as it did or sooner (a slope-dwell problem on davosdorf ran its search seed 14
+  // more times, each with half the time of the one before, until its 60 s were gone).
   std::map<const Seed*, double> granted;
   const auto moreTimeThanBefore = [&](const Seed* seed) {
     const auto it = granted.find(seed);
@@ -462,7 +465,9 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
       log.budget_s = std::ldexp(seed == first ? first_budget : options.seed_time_s, log.round);
       limit = std::min(log.budget_s, limit.value_or(log.budget_s));
     }
-    granted[seed] = log.time_given_s = limit.value_or(std::numeric_limits<double>::infinity());
+    const double given = limit.value_or(std::numeric_limits<double>::infinity());
+    log.time_given_s = given;
+    granted.erase(seed);
     const ocp::Deadline within(Clock::now(), limit, options.stop);
     const bool converged_before = log.converged();
     const Clock::time_point t0 = Clock::now();
@@ -490,8 +495,10 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
       // retried, repeating a 25 s refinement to the same verdict on davosdorf's Segway 3.
       unfinished = found.time_limit_reached || within.over();
       log.record(std::move(found), t0);
+      if (log.round > 0) granted[seed] = given;
     } else {
       ChainProgress& done = progress[seed];
+      const bool solved_before = done.solved, ipopt_ended_before = done.ipopt_ended;
       if (!done.solved) {
         SeededSolution result = attempt(vehicle, problem, map, options, seed, within.left());
         done.solved = !result.time_limit_reached;
@@ -503,6 +510,9 @@ void solveFromSeeds(const models::TerrainFollowingModel& vehicle,
         unfinished = !done.bridged;
       }
       unfinished = unfinished || !done.solved;
+      if (unfinished && done.solved == solved_before && done.ipopt_ended == ipopt_ended_before) {
+        granted[seed] = given;  // no step ended on its own: a retry runs this chain again
+      }
     }
     const bool gained = log.converged() && !converged_before;
     return budgeted && !gained && unfinished && !deadline.over();
